@@ -1,0 +1,9 @@
+// The JSON Schemas of schemas/, compiled into the programs (generated from the files by
+// common/cmake/EmbedFiles.cmake at build time).
+#pragma once
+
+namespace ffriga {
+
+extern const char* const kBodySchema;  // schemas/body.schema.json
+
+}  // namespace ffriga

@@ -1,0 +1,168 @@
+#include "preproc/body_config.h"
+
+#include "common/json_schema.h"
+#include "common/refinement.h"
+#include "common/schemas.h"
+#include "preproc/geometry_builders.h"
+
+namespace ffriga {
+
+const char* toString(BodyModel model) {
+  switch (model) {
+    case BodyModel::kAxisymmetric:
+      return "axisymmetric";
+    case BodyModel::kSolid:
+      return "solid";
+  }
+  return "?";
+}
+
+namespace {
+
+NurbsPatch explicitNurbs(const YamlDocument& doc, const YAML::Node& g) {
+  const YAML::Node degrees = g["degrees"];
+  const YAML::Node knots = g["knots"];
+  const int d = static_cast<int>(degrees.size());
+  if (static_cast<int>(knots.size()) != d) {
+    throw inputError(doc, knots, "geometry.knots",
+                     Str() << "expected one knot vector per degree (" << d << "), found "
+                           << knots.size());
+  }
+  std::vector<KnotVector> U;
+  int n = 1;
+  for (int a = 0; a < d; ++a) {
+    const std::string key = Str() << "geometry.knots[" << a << "]";
+    std::vector<double> u;
+    for (std::size_t i = 0; i < knots[a].size(); ++i) u.push_back(getDouble(doc, knots[a][i], key));
+    const int p = getInt(doc, degrees[a], Str() << "geometry.degrees[" << a << "]");
+    const std::string reason = KnotVector::validate(u, p);
+    if (!reason.empty()) throw inputError(doc, knots[a], key, reason);
+    U.emplace_back(std::move(u), p);
+    n *= U.back().numBasis();
+  }
+  const YAML::Node cps = g["control_points"];
+  const YAML::Node ws = g["weights"];
+  if (static_cast<int>(cps.size()) != n) {
+    throw inputError(doc, cps, "geometry.control_points",
+                     Str() << "the knot vectors define " << n << " basis functions, so " << n
+                           << " control points are expected; found " << cps.size());
+  }
+  if (static_cast<int>(ws.size()) != n) {
+    throw inputError(doc, ws, "geometry.weights",
+                     Str() << "expected one weight per control point (" << n << "), found "
+                           << ws.size());
+  }
+  const int s = static_cast<int>(cps[0].size());
+  Eigen::MatrixXd P(n, s);
+  Eigen::VectorXd w(n);
+  for (int k = 0; k < n; ++k) {
+    const std::string key = Str() << "geometry.control_points[" << k << "]";
+    if (static_cast<int>(cps[k].size()) != s) {
+      throw inputError(doc, cps[k], key,
+                       Str() << "expected " << s << " coordinates like the first point, found "
+                             << cps[k].size());
+    }
+    for (int c = 0; c < s; ++c) P(k, c) = getDouble(doc, cps[k][c], key);
+    w(k) = getDouble(doc, ws[k], Str() << "geometry.weights[" << k << "]");
+  }
+  return NurbsPatch(std::move(U), std::move(P), std::move(w));
+}
+
+std::vector<int> perDirection(const YamlDocument& doc, const YAML::Node& node,
+                              const std::string& key, int d) {
+  std::vector<int> v(d, 0);
+  if (!node || node.IsNull()) return v;
+  if (static_cast<int>(node.size()) != d) {
+    throw inputError(doc, node, key,
+                     Str() << "expected one entry per parametric direction (" << d << "), found "
+                           << node.size());
+  }
+  for (int a = 0; a < d; ++a) v[a] = getInt(doc, node[a], Str() << key << "[" << a << "]");
+  return v;
+}
+
+}  // namespace
+
+BodyConfig parseBodyConfig(YamlDocument doc) {
+  static const JsonSchema schema(kBodySchema, "body.schema.json");
+  schema.validate(doc);
+  BodyConfig c;
+  const YAML::Node& root = doc.root;
+  c.name = getString(doc, root["name"], "name");
+  c.model = getString(doc, root["model"], "model") == "axisymmetric" ? BodyModel::kAxisymmetric
+                                                                      : BodyModel::kSolid;
+  const YAML::Node m = root["material"];
+  c.material.youngs_modulus = getDouble(doc, m["youngs_modulus"], "material.youngs_modulus");
+  c.material.poisson_ratio = getDouble(doc, m["poisson_ratio"], "material.poisson_ratio");
+  c.material.density = getDouble(doc, m["density"], "material.density");
+
+  const YAML::Node g = root["geometry"];
+  c.geometry_type = getString(doc, g["type"], "geometry.type");
+  try {
+    if (c.geometry_type == "half_disk") {
+      c.geometry = halfDisk(getDouble(doc, g["radius"], "geometry.radius"));
+    } else if (c.geometry_type == "sphere") {
+      c.geometry = solidSphere(getDouble(doc, g["radius"], "geometry.radius"));
+    } else if (c.geometry_type == "rod") {
+      c.geometry = solidRod(getDouble(doc, g["radius"], "geometry.radius"),
+                            getDouble(doc, g["length"], "geometry.length"));
+    } else {
+      c.geometry = explicitNurbs(doc, g);
+    }
+  } catch (const std::invalid_argument& e) {
+    throw inputError(doc, g, "geometry", e.what());
+  }
+  const int d = c.geometry.paramDim();
+  const int s = c.geometry.spaceDim();
+  const bool axi = c.model == BodyModel::kAxisymmetric;
+  if ((axi && (d != 2 || s != 2)) || (!axi && (d != 3 || s != 3))) {
+    throw inputError(doc, root["model"], "model",
+                     Str() << "model '" << toString(c.model) << "' needs "
+                           << (axi ? "a 2D surface patch with 2D control points"
+                                   : "a 3D volume patch with 3D control points")
+                           << ", the geometry has " << d << " parametric directions and " << s
+                           << " coordinates");
+  }
+  if (axi) {
+    for (int k = 0; k < c.geometry.numControlPoints(); ++k) {
+      if (c.geometry.points()(k, 0) < 0.0) {
+        throw inputError(doc, g, "geometry",
+                         Str() << "an axisymmetric section must lie in x >= 0 (x is the radius); "
+                               << "control point " << k << " has x = "
+                               << c.geometry.points()(k, 0));
+      }
+    }
+  }
+  const YAML::Node r = root["refinement"];
+  c.elevate_degree = perDirection(doc, r ? r["elevate_degree"] : YAML::Node(),
+                                  "refinement.elevate_degree", d);
+  c.insert_knots =
+      perDirection(doc, r ? r["insert_knots"] : YAML::Node(), "refinement.insert_knots", d);
+  for (int a = 0; a < d; ++a) {
+    if (c.geometry.degree(a) + c.elevate_degree[a] > kMaxDegree) {
+      throw inputError(doc, r["elevate_degree"][a],
+                       Str() << "refinement.elevate_degree[" << a << "]",
+                       Str() << "degree " << c.geometry.degree(a) << " + " << c.elevate_degree[a]
+                             << " exceeds the maximum degree " << kMaxDegree);
+    }
+  }
+  c.source = std::move(doc);
+  return c;
+}
+
+BodyConfig loadBodyConfig(const std::string& path) { return parseBodyConfig(loadYamlFile(path)); }
+
+NurbsPatch refinedPatch(const BodyConfig& config) {
+  NurbsPatch patch = config.geometry;
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    if (config.elevate_degree[a] > 0) patch = elevateDegree(patch, a, config.elevate_degree[a]);
+  }
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    if (config.insert_knots[a] > 0) {
+      patch = insertKnots(patch, a, uniformInsertionKnots(patch.knots(a), config.insert_knots[a]));
+    }
+  }
+  return patch;
+}
+
+}  // namespace ffriga
