@@ -46,12 +46,12 @@ class Str {
 
 // Always-on check of a condition a caller can violate; throws std::invalid_argument with
 // the location and the message. Use InputError for user input instead.
-#define FFRIGA_CHECK(cond, msg)                                                         \
-  do {                                                                                  \
-    if (!(cond)) {                                                                      \
-      throw std::invalid_argument(::ffriga::Str() << __FILE__ << ":" << __LINE__ << ": " \
+#define FFRIGA_CHECK(cond, msg)                                                            \
+  do {                                                                                     \
+    if (!(cond)) {                                                                         \
+      throw std::invalid_argument(::ffriga::Str() << __FILE__ << ":" << __LINE__ << ": "   \
                                                   << "check '" #cond "' failed: " << msg); \
-    }                                                                                   \
+    }                                                                                      \
   } while (0)
 
 #ifdef NDEBUG

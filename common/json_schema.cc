@@ -1,25 +1,44 @@
 #include "common/json_schema.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <set>
-#include <vector>
 #include <stdexcept>
+#include <vector>
 
 namespace ffriga {
 
 namespace {
 
-const std::set<std::string> kKeywords = {
-    "type",      "properties",     "required",         "additionalProperties",
-    "items",     "minItems",       "maxItems",         "minimum",
-    "maximum",   "exclusiveMinimum", "exclusiveMaximum", "enum",
-    "const",     "$ref",           "oneOf",            "title",
-    "description", "default",      "examples",         "$schema",
-    "$id",       "$comment",       "x-unit",           "$defs",
-    "definitions"};
+const std::set<std::string> kKeywords = {"type",
+                                         "properties",
+                                         "required",
+                                         "additionalProperties",
+                                         "items",
+                                         "minItems",
+                                         "maxItems",
+                                         "minimum",
+                                         "maximum",
+                                         "exclusiveMinimum",
+                                         "exclusiveMaximum",
+                                         "enum",
+                                         "const",
+                                         "$ref",
+                                         "oneOf",
+                                         "title",
+                                         "description",
+                                         "default",
+                                         "examples",
+                                         "$schema",
+                                         "$id",
+                                         "$comment",
+                                         "x-unit",
+                                         "$defs",
+                                         "definitions"};
 
-bool isQuoted(const YAML::Node& n) { return n.Tag() == "!"; }
+bool isQuoted(const YAML::Node& n) {
+  return n.Tag() == "!";
+}
 
 bool isNumber(const YAML::Node& n, double* value = nullptr) {
   if (!n.IsScalar() || isQuoted(n)) return false;
@@ -184,9 +203,9 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
       allowed << (i ? ", " : "") << e[i].Scalar();
     }
     if (!ok) {
-      throw inputError(doc, where, key,
-                       Str() << "expected one of " << allowed.str() << "; found "
-                             << describeNode(node));
+      throw inputError(
+          doc, where, key,
+          Str() << "expected one of " << allowed.str() << "; found " << describeNode(node));
     }
   }
 
@@ -196,8 +215,8 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
     auto bound = [&](const char* kw, bool violated, const char* rule) {
       if (schema[kw] && violated) {
         throw inputError(doc, where, key,
-                         Str() << "expected a number " << rule << " " << schema[kw].Scalar()
-                               << unit << ", found " << node.Scalar());
+                         Str() << "expected a number " << rule << " " << schema[kw].Scalar() << unit
+                               << ", found " << node.Scalar());
       }
     };
     bound("minimum", schema["minimum"] && value < schema["minimum"].as<double>(), ">=");
@@ -211,14 +230,14 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
   if (node.IsSequence()) {
     const int n = static_cast<int>(node.size());
     if (schema["minItems"] && n < schema["minItems"].as<int>()) {
-      throw inputError(doc, where, key,
-                       Str() << "expected at least " << schema["minItems"].as<int>()
-                             << " items, found " << n);
+      throw inputError(
+          doc, where, key,
+          Str() << "expected at least " << schema["minItems"].as<int>() << " items, found " << n);
     }
     if (schema["maxItems"] && n > schema["maxItems"].as<int>()) {
-      throw inputError(doc, where, key,
-                       Str() << "expected at most " << schema["maxItems"].as<int>()
-                             << " items, found " << n);
+      throw inputError(
+          doc, where, key,
+          Str() << "expected at most " << schema["maxItems"].as<int>() << " items, found " << n);
     }
     if (const YAML::Node items = schema["items"]) {
       for (int i = 0; i < n; ++i) {
@@ -264,7 +283,8 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
           Str msg;
           msg << "missing required key '" << r.Scalar() << "'";
           const YAML::Node ps = props ? resolve(props[r.Scalar()]) : YAML::Node();
-          if (ps && ps.IsMap() && ps["description"]) msg << " (" << ps["description"].Scalar() << ")";
+          if (ps && ps.IsMap() && ps["description"])
+            msg << " (" << ps["description"].Scalar() << ")";
           throw inputError(doc, where, key.empty() ? "(top level)" : key, msg);
         }
       }
@@ -297,9 +317,9 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
           return;
         }
       }
-      throw inputError(doc, tag ? tag : where, join(key, discriminator),
-                       Str() << "expected one of " << allowed.str() << "; found "
-                             << describeNode(tag));
+      throw inputError(
+          doc, tag ? tag : where, join(key, discriminator),
+          Str() << "expected one of " << allowed.str() << "; found " << describeNode(tag));
     }
     std::string firstError;
     for (const auto& branch : one) {

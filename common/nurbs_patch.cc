@@ -14,24 +14,21 @@ NurbsPatch::NurbsPatch(std::vector<KnotVector> knots, Eigen::MatrixXd points,
     : knots_(std::move(knots)), points_(std::move(points)), weights_(std::move(weights)) {
   const int d = paramDim();
   if (d < 1 || d > 3) {
-    throw std::invalid_argument(Str() << "a patch needs 1 to 3 parametric directions, found "
-                                      << d);
+    throw std::invalid_argument(Str() << "a patch needs 1 to 3 parametric directions, found " << d);
   }
   if (spaceDim() < 2 || spaceDim() > 3) {
-    throw std::invalid_argument(Str() << "control points need 2 or 3 coordinates, found "
-                                      << spaceDim());
+    throw std::invalid_argument(Str()
+                                << "control points need 2 or 3 coordinates, found " << spaceDim());
   }
   int n = 1;
   for (const auto& U : knots_) n *= U.numBasis();
   if (points_.rows() != n) {
-    throw std::invalid_argument(Str() << "the knot vectors define " << n
-                                      << " basis functions but " << points_.rows()
-                                      << " control points were given");
+    throw std::invalid_argument(Str() << "the knot vectors define " << n << " basis functions but "
+                                      << points_.rows() << " control points were given");
   }
   if (weights_.size() != n) {
-    throw std::invalid_argument(Str() << "the knot vectors define " << n
-                                      << " basis functions but " << weights_.size()
-                                      << " weights were given");
+    throw std::invalid_argument(Str() << "the knot vectors define " << n << " basis functions but "
+                                      << weights_.size() << " weights were given");
   }
   for (int k = 0; k < n; ++k) {
     if (!(weights_(k) > 0.0)) {
@@ -130,8 +127,8 @@ void NurbsPatch::bsplineBasis(const double* xi, int order, PatchBasis& out) cons
   for (int j2 = 0; j2 <= p2; ++j2) {
     for (int j1 = 0; j1 <= p1; ++j1) {
       for (int j0 = 0; j0 <= p0; ++j0, ++c) {
-        out.index[c] = linearIndex({spans[0] - p0 + j0, d > 1 ? spans[1] - p1 + j1 : 0,
-                                    d > 2 ? spans[2] - p2 + j2 : 0});
+        out.index[c] = linearIndex(
+            {spans[0] - p0 + j0, d > 1 ? spans[1] - p1 + j1 : 0, d > 2 ? spans[2] - p2 + j2 : 0});
       }
     }
   }

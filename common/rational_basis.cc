@@ -7,8 +7,8 @@ namespace ffriga {
 void rationalize(const Eigen::MatrixXd& B, const Eigen::VectorXd& w, int d, int order,
                  Eigen::MatrixXd& R) {
   const int rows = numDerivativeRows(d, order);
-  FFRIGA_ASSERT(B.rows() >= rows && B.cols() == w.size(), "basis table " << B.rows() << "x"
-                                                                        << B.cols());
+  FFRIGA_ASSERT(B.rows() >= rows && B.cols() == w.size(),
+                "basis table " << B.rows() << "x" << B.cols());
   // Weighted polynomial basis and the weight function W with its derivatives.
   const Eigen::MatrixXd Bw = B.topRows(rows) * w.asDiagonal();
   const Eigen::VectorXd W = Bw.rowwise().sum();
@@ -22,9 +22,9 @@ void rationalize(const Eigen::MatrixXd& B, const Eigen::VectorXd& w, int d, int 
     for (int a = 0; a < d; ++a) {
       for (int b = a; b < d; ++b) {
         const int ab = secondDerivativeRow(d, a, b);
-        R.row(ab) = (Bw.row(ab) - R.row(1 + a) * W(1 + b) - R.row(1 + b) * W(1 + a) -
-                     R.row(0) * W(ab)) *
-                    invW;
+        R.row(ab) =
+            (Bw.row(ab) - R.row(1 + a) * W(1 + b) - R.row(1 + b) * W(1 + a) - R.row(0) * W(ab)) *
+            invW;
       }
     }
   }

@@ -77,8 +77,7 @@ double getDouble(const YamlDocument& doc, const YAML::Node& node, const std::str
 int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
   int v = 0;
   if (!node.IsScalar() || !YAML::convert<int>::decode(node, v)) {
-    throw inputError(doc, node, key,
-                     Str() << "expected an integer, found " << describeNode(node));
+    throw inputError(doc, node, key, Str() << "expected an integer, found " << describeNode(node));
   }
   return v;
 }

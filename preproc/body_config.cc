@@ -24,9 +24,9 @@ NurbsPatch explicitNurbs(const YamlDocument& doc, const YAML::Node& g) {
   const YAML::Node knots = g["knots"];
   const int d = static_cast<int>(degrees.size());
   if (static_cast<int>(knots.size()) != d) {
-    throw inputError(doc, knots, "geometry.knots",
-                     Str() << "expected one knot vector per degree (" << d << "), found "
-                           << knots.size());
+    throw inputError(
+        doc, knots, "geometry.knots",
+        Str() << "expected one knot vector per degree (" << d << "), found " << knots.size());
   }
   std::vector<KnotVector> U;
   int n = 1;
@@ -48,9 +48,9 @@ NurbsPatch explicitNurbs(const YamlDocument& doc, const YAML::Node& g) {
                            << " control points are expected; found " << cps.size());
   }
   if (static_cast<int>(ws.size()) != n) {
-    throw inputError(doc, ws, "geometry.weights",
-                     Str() << "expected one weight per control point (" << n << "), found "
-                           << ws.size());
+    throw inputError(
+        doc, ws, "geometry.weights",
+        Str() << "expected one weight per control point (" << n << "), found " << ws.size());
   }
   const int s = static_cast<int>(cps[0].size());
   Eigen::MatrixXd P(n, s);
@@ -90,7 +90,7 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
   const YAML::Node& root = doc.root;
   c.name = getString(doc, root["name"], "name");
   c.model = getString(doc, root["model"], "model") == "axisymmetric" ? BodyModel::kAxisymmetric
-                                                                      : BodyModel::kSolid;
+                                                                     : BodyModel::kSolid;
   const YAML::Node m = root["material"];
   c.material.youngs_modulus = getDouble(doc, m["youngs_modulus"], "material.youngs_modulus");
   c.material.poisson_ratio = getDouble(doc, m["poisson_ratio"], "material.poisson_ratio");
@@ -128,14 +128,14 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
       if (c.geometry.points()(k, 0) < 0.0) {
         throw inputError(doc, g, "geometry",
                          Str() << "an axisymmetric section must lie in x >= 0 (x is the radius); "
-                               << "control point " << k << " has x = "
-                               << c.geometry.points()(k, 0));
+                               << "control point " << k
+                               << " has x = " << c.geometry.points()(k, 0));
       }
     }
   }
   const YAML::Node r = root["refinement"];
-  c.elevate_degree = perDirection(doc, r ? r["elevate_degree"] : YAML::Node(),
-                                  "refinement.elevate_degree", d);
+  c.elevate_degree =
+      perDirection(doc, r ? r["elevate_degree"] : YAML::Node(), "refinement.elevate_degree", d);
   c.insert_knots =
       perDirection(doc, r ? r["insert_knots"] : YAML::Node(), "refinement.insert_knots", d);
   for (int a = 0; a < d; ++a) {
@@ -150,7 +150,9 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
   return c;
 }
 
-BodyConfig loadBodyConfig(const std::string& path) { return parseBodyConfig(loadYamlFile(path)); }
+BodyConfig loadBodyConfig(const std::string& path) {
+  return parseBodyConfig(loadYamlFile(path));
+}
 
 NurbsPatch refinedPatch(const BodyConfig& config) {
   NurbsPatch patch = config.geometry;

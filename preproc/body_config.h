@@ -26,10 +26,10 @@ struct BodyConfig {
   std::string name;
   BodyModel model = BodyModel::kSolid;
   Material material;
-  std::string geometry_type;         // half_disk | sphere | rod | nurbs
-  NurbsPatch geometry;               // the exact, unrefined patch
-  std::vector<int> elevate_degree;   // per parametric direction
-  std::vector<int> insert_knots;     // per direction: knots per non-empty span
+  std::string geometry_type;        // half_disk | sphere | rod | nurbs
+  NurbsPatch geometry;              // the exact, unrefined patch
+  std::vector<int> elevate_degree;  // per parametric direction
+  std::vector<int> insert_knots;    // per direction: knots per non-empty span
 };
 
 // Loads, validates against the body schema and checks the semantics (list lengths match

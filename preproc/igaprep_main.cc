@@ -38,20 +38,18 @@ void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, 
   const int d = patch.paramDim();
   std::printf("igaprep %s: body '%s' from %s\n", ffriga::kVersion, c.name.c_str(),
               c.source.path.c_str());
-  std::printf("  model      %s, geometry %s\n", ffriga::toString(c.model),
-              c.geometry_type.c_str());
-  std::printf("  material   E = %.6g Pa, nu = %.6g, rho = %.6g kg/m^3\n",
-              c.material.youngs_modulus, c.material.poisson_ratio, c.material.density);
+  std::printf("  model      %s, geometry %s\n", ffriga::toString(c.model), c.geometry_type.c_str());
+  std::printf("  material   E = %.6g Pa, nu = %.6g, rho = %.6g kg/m^3\n", c.material.youngs_modulus,
+              c.material.poisson_ratio, c.material.density);
   std::printf("  %-9s %7s %9s %15s\n", "direction", "degree", "elements", "control points");
   for (int a = 0; a < d; ++a) {
     std::printf("  %-9s %7d %9d %15d\n", kDirectionNames[a], patch.degree(a),
                 patch.knots(a).numElements(), patch.numBasis(a));
   }
-  std::printf("  %-9s %7s %9d %15d\n", "total", "", patch.numElements(),
-              patch.numControlPoints());
+  std::printf("  %-9s %7s %9d %15d\n", "total", "", patch.numElements(), patch.numControlPoints());
   // Coincident control points: absolute tolerance relative to the patch size.
-  const double size = (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff())
-                          .maxCoeff();
+  const double size =
+      (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff()).maxCoeff();
   const auto groups = ffriga::coincidentControlPoints(patch, 1e-12 * size);
   int tied = 0;
   for (const auto& g : groups) tied += static_cast<int>(g.size()) - 1;
@@ -59,7 +57,8 @@ void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, 
               groups.size(), tied);
   if (c.model == ffriga::BodyModel::kAxisymmetric) {
     int onAxis = 0;
-    for (int k = 0; k < patch.numControlPoints(); ++k) onAxis += patch.points()(k, 0) <= 1e-12 * size;
+    for (int k = 0; k < patch.numControlPoints(); ++k)
+      onAxis += patch.points()(k, 0) <= 1e-12 * size;
     std::printf("  control points on the axis (u_r = 0): %d\n", onAxis);
   }
   std::printf("  displacement DOFs before tying: %d\n",
@@ -87,9 +86,8 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (o.positional.size() != 1) {
-      throw ffriga::UsageError(ffriga::Str()
-                               << "expected one body file, found " << o.positional.size()
-                               << " arguments (see --help)");
+      throw ffriga::UsageError(ffriga::Str() << "expected one body file, found "
+                                             << o.positional.size() << " arguments (see --help)");
     }
     if (!o.output.empty()) {
       throw ffriga::UsageError("-o: writing SID files is not available in this version");

@@ -25,7 +25,8 @@ double integrate(const NurbsPatch& patch, int n, F f) {
   std::vector<int> e(d, 0);
   while (true) {
     std::vector<QuadratureRule> rules;
-    for (int a = 0; a < d; ++a) rules.push_back(gaussLegendre(n, breaks[a][e[a]], breaks[a][e[a] + 1]));
+    for (int a = 0; a < d; ++a)
+      rules.push_back(gaussLegendre(n, breaks[a][e[a]], breaks[a][e[a] + 1]));
     const int nz = d > 2 ? n : 1;
     for (int k = 0; k < nz; ++k) {
       for (int j = 0; j < n; ++j) {

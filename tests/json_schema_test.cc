@@ -37,8 +37,7 @@ TEST_CASE("schema validation reports file, line and key", "[schema]") {
   CHECK(errorOf("a: 1\nzz: 3\n").find("in.yaml:2: key 'zz': unknown key") == 0);
   CHECK(errorOf("b: [1, 2]\n").find("missing required key 'a'") != std::string::npos);
   CHECK(errorOf("a: 1\nb: [1]\n") == "in.yaml:2: key 'b': expected at least 2 items, found 1");
-  CHECK(errorOf("a: 1\nb: [1, 2.5]\n") ==
-        "in.yaml:2: key 'b[1]': expected an integer, found 2.5");
+  CHECK(errorOf("a: 1\nb: [1, 2.5]\n") == "in.yaml:2: key 'b[1]': expected an integer, found 2.5");
   CHECK(errorOf("a: 1\nc: z\n") == "in.yaml:2: key 'c': expected one of x, y; found z");
   CHECK(errorOf("a: 1\nd: {n: [1]}\n").find("key 'd.n': expected a string") != std::string::npos);
   CHECK(errorOf("a: \"1\"\n").find("expected a number, found \"1\"") != std::string::npos);

@@ -16,14 +16,17 @@ inline std::mt19937& rng() {
 inline double uniform(double a = 0.0, double b = 1.0) {
   return std::uniform_real_distribution<double>(a, b)(rng());
 }
-inline int uniformInt(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng()); }
+inline int uniformInt(int a, int b) {
+  return std::uniform_int_distribution<int>(a, b)(rng());
+}
 
 // Random clamped knot vector on [a, b] of degree p with `interior` distinct interior knots,
 // some repeated (multiplicity <= p).
 inline KnotVector randomKnots(int p, int interior, double a = 0.0, double b = 1.0) {
   std::vector<double> U(p + 1, a);
   std::vector<double> inner;
-  for (int i = 0; i < interior; ++i) inner.push_back(uniform(a + 0.05 * (b - a), b - 0.05 * (b - a)));
+  for (int i = 0; i < interior; ++i)
+    inner.push_back(uniform(a + 0.05 * (b - a), b - 0.05 * (b - a)));
   std::sort(inner.begin(), inner.end());
   for (double u : inner) {
     const int mult = p >= 2 && uniform() < 0.2 ? uniformInt(1, p) : 1;
