@@ -115,13 +115,18 @@ void tensorBasis(const std::vector<KnotVector>& knots, const int* spans, const d
 }
 
 void NurbsPatch::bsplineBasis(const double* xi, int order, PatchBasis& out) const {
-  const int d = paramDim();
   int spans[3] = {0, 0, 0};
-  for (int dir = 0; dir < d; ++dir) spans[dir] = knots_[dir].findSpan(xi[dir]);
+  for (int dir = 0; dir < paramDim(); ++dir) spans[dir] = knots_[dir].findSpan(xi[dir]);
+  bsplineBasisOnSpans(spans, xi, order, out);
+}
+
+void NurbsPatch::bsplineBasisOnSpans(const int* spans, const double* xi, int order,
+                                     PatchBasis& out) const {
+  const int d = paramDim();
   tensorBasis(knots_, spans, xi, order, out.table);
   out.index.resize(out.table.cols());
   int c = 0;
-  const int p0 = d > 0 ? degree(0) : 0;
+  const int p0 = degree(0);
   const int p1 = d > 1 ? degree(1) : 0;
   const int p2 = d > 2 ? degree(2) : 0;
   for (int j2 = 0; j2 <= p2; ++j2) {
@@ -134,13 +139,20 @@ void NurbsPatch::bsplineBasis(const double* xi, int order, PatchBasis& out) cons
   }
 }
 
-void NurbsPatch::basis(const double* xi, int order, PatchBasis& out) const {
+void NurbsPatch::rationalBasisOnSpans(const int* spans, const double* xi, int order,
+                                      PatchBasis& out) const {
   PatchBasis poly;
-  bsplineBasis(xi, order, poly);
+  bsplineBasisOnSpans(spans, xi, order, poly);
   Eigen::VectorXd w(poly.index.size());
   for (int c = 0; c < w.size(); ++c) w(c) = weights_(poly.index[c]);
   rationalize(poly.table, w, paramDim(), order, out.table);
   out.index = std::move(poly.index);
+}
+
+void NurbsPatch::basis(const double* xi, int order, PatchBasis& out) const {
+  int spans[3] = {0, 0, 0};
+  for (int dir = 0; dir < paramDim(); ++dir) spans[dir] = knots_[dir].findSpan(xi[dir]);
+  rationalBasisOnSpans(spans, xi, order, out);
 }
 
 PatchPoint NurbsPatch::evaluate(const double* xi, int order) const {

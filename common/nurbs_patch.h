@@ -61,6 +61,10 @@ class NurbsPatch {
   // Polynomial (B-spline) and rational basis with derivatives up to `order` (<= 2) at xi.
   void bsplineBasis(const double* xi, int order, PatchBasis& out) const;
   void basis(const double* xi, int order, PatchBasis& out) const;
+  // The same on given knot spans (one per direction): xi on an element's upper boundary is
+  // evaluated with that element's polynomial pieces.
+  void bsplineBasisOnSpans(const int* spans, const double* xi, int order, PatchBasis& out) const;
+  void rationalBasisOnSpans(const int* spans, const double* xi, int order, PatchBasis& out) const;
   PatchPoint evaluate(const double* xi, int order = 0) const;
 
  private:

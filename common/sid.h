@@ -1,0 +1,115 @@
+// The reduced flexible body: everything ffrsim needs about one body, written by igaprep
+// into an SID file (HDF5; layout in schemas/sid_format.md) and read back by ffrsim.
+// Named after the Standard Input Data of Wallrapp / Schwertassek ("Dynamik flexibler
+// Mehrkörpersysteme", 1999, Sect. 6.4); paper Sect. 2, Eq. (1).
+//
+// Frames and coordinates. The body frame K_R has its origin and axes where igaprep's
+// geometry has them (for a Buckens frame the origin is moved to the centre of mass and the
+// rigid content of the modes is removed in the mass metric). A material point with
+// undeformed body-frame position x0 moves to
+//
+//   r = r_R + A (x0 + Phi(x0) q),        Phi(x0) = sum_k R_k(x0) Phi_k  (3 x nq),
+//
+// where Phi_k are the rows of the mode shapes at control point k (displacements of the
+// control points, Eq. 14: u = Phi q). All quantities are SI: m, kg, s, and per unit of the
+// elastic coordinates q (which are mass-normalised: units kg^(1/2) m).
+//
+// Axisymmetric bodies (model = axisymmetric) store 2D data: control points (x = radius,
+// y = axis), modes with (u_r, u_y) per control point, and rigid motion along y only; the
+// inertia invariants are those of the full body of revolution.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace ffriga {
+
+// Contact surface: the boundary face (3D) or edge (2D) that holds the contact region, as
+// Bezier-extracted elements so that the runtime evaluates it without knot vectors:
+//   on element e with parametric box [lo, hi] (dimension dc = d - 1),
+//   B_k(s) = sum_b C_e(k, b) Bern_b(t),   t = (s - lo) / (hi - lo),
+// with Bern_b the tensor Bernstein polynomials of `degrees` (first direction fastest), and
+// the rational basis R_k = w_k B_k / sum w_l B_l with the body's weights (Eq. 4). Function
+// numbers k are body control point numbers (rows of Phi).
+struct ContactSurface {
+  std::string name;                         // e.g. "contact"
+  int dim = 0;                              // dc = 1 (2D body) or 2 (3D body)
+  std::vector<int> degrees;                 // dc polynomial degrees
+  Eigen::MatrixXd element_lower;            // ne x dc, surface parameters
+  Eigen::MatrixXd element_upper;            // ne x dc
+  std::vector<int> element_level;           // ne, hierarchical level (0 = coarsest)
+  std::vector<int> function_offsets;        // ne + 1, CSR offsets into functions / extraction
+  std::vector<int> functions;               // active body control points per element
+  std::vector<Eigen::MatrixXd> extraction;  // per element: n_active x prod(degrees + 1)
+  double outward_sign = 1.0;                // +1 if d x/ds_0 x d x/ds_1 (2D: rotated tangent)
+                                            // points out of the body, -1 otherwise
+  // Collocation (Botella) points, one per surface function in the contact region
+  // (Sect. 4): surface parameters, element, and weight = integral of the function over the
+  // undeformed surface (m^2 in 3D; m, per radian not included, in 2D).
+  Eigen::MatrixXd collocation_points;    // nc x dc
+  std::vector<int> collocation_element;  // nc
+  Eigen::VectorXd collocation_weights;   // nc
+};
+
+// Named physical point whose displacement is a linear combination of control point
+// displacements: u(marker) = sum_k R_k(xi) u_k (joints and outputs).
+struct Marker {
+  std::string name;
+  Eigen::VectorXd position;    // undeformed, body frame, m
+  std::vector<int> functions;  // control points with non-zero basis value
+  Eigen::VectorXd values;      // R_k(xi) of those control points
+};
+
+struct FlexibleBodySid {
+  // Identity and provenance.
+  std::string name;
+  std::string model;  // "axisymmetric" or "solid"
+  int space_dim = 3;  // 2 for axisymmetric, 3 for solid
+  int ndof = 0;       // displacement DOFs of the full (unreduced) model
+  int nlvl = 1;       // hierarchical levels
+  int n_elements = 0;
+  int n_interface_control_points = 0;
+  std::string frame;       // "buckens" or "tangent"
+  std::string input_yaml;  // the body file's text
+
+  // Rigid-body invariants (body frame). For an axisymmetric body: of the full body of
+  // revolution, with the axis along y.
+  double mass = 0.0;                                       // m, kg
+  Eigen::Vector3d first_moment = Eigen::Vector3d::Zero();  // m c = int rho x0 dV, kg m
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  // J0 = int rho (x0.x0 E - x0 x0^T) dV, kg m^2
+
+  // Elastic invariants (nq elastic coordinates).
+  Eigen::VectorXd frequencies_hz;  // nq, omega_i / (2 pi)
+  Eigen::MatrixXd Me;              // nq x nq, = E (Eq. 13)
+  Eigen::MatrixXd Ke;              // nq x nq, = diag(omega^2), N/m per unit q^2
+  Eigen::MatrixXd De;              // nq x nq, = diag(2 zeta omega)
+  Eigen::MatrixXd Ct;              // nq x 3: Ct^T = int rho Phi dV (translational coupling)
+  Eigen::MatrixXd Cr0;             // nq x 3: Cr^T = int rho x0~ Phi dV at q = 0
+  // First-order terms in q (kept: they carry the gyroscopic coupling and the inertia
+  // change of the deformed body, which rotating bodies need):
+  //   Cr(q)^T = Cr0^T + sum_j q_j Cr1_j,  Cr1_j(:, i) = int rho Phi_j~ Phi_i dV     (3 x nq)
+  //   J(q)    = J0 + sum_j q_j J1_j,      J1_j = -int rho (x0~ Phi_j~ + Phi_j~ x0~) dV (3 x 3)
+  std::vector<Eigen::MatrixXd> Cr1;  // nq matrices 3 x nq
+  std::vector<Eigen::Matrix3d> J1;   // nq matrices
+  // Centrifugal load on the elastic coordinates (SID "Oe", zeroth order in q):
+  //   int rho Phi^T w~ w~ x0 dV = Oe [w1^2, w2^2, w3^2, w1 w2, w2 w3, w1 w3]^T      (nq x 6)
+  // The Coriolis term int rho Phi^T w~ Phi dV qdot follows from Cr1:
+  //   (int rho Phi_i^T w~ Phi_j dV) = w . Cr1_j(:, i).
+  Eigen::MatrixXd Oe;
+  // Second-order terms int rho Phi_i^T Phi_j dV = Me and the q^2 part of J are dropped
+  // (small deformations, paper Sect. 2).
+
+  // Modes at every control point: row block k (space_dim rows) = Phi_k.
+  Eigen::MatrixXd control_points;  // ncp x space_dim, undeformed, body frame, m
+  Eigen::VectorXd weights;         // ncp
+  Eigen::MatrixXd Phi;             // (ncp * space_dim) x nq
+
+  std::vector<ContactSurface> surfaces;
+  std::vector<Marker> markers;
+
+  int nq() const { return static_cast<int>(frequencies_hz.size()); }
+};
+
+}  // namespace ffriga

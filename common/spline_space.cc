@@ -1,0 +1,61 @@
+#include "common/spline_space.h"
+
+#include <algorithm>
+
+namespace ffriga {
+
+PatchPoint SplineSpace::evaluate(const double* xi, int order) const {
+  PatchBasis R;
+  elementBasis(findElement(xi), xi, order, R);
+  const int d = paramDim();
+  Eigen::MatrixXd P(R.index.size(), spaceDim());
+  for (int c = 0; c < P.rows(); ++c) P.row(c) = controlPoints().row(R.index[c]);
+  const Eigen::MatrixXd X = R.table * P;
+  PatchPoint pt;
+  pt.x = X.row(0).transpose();
+  if (order >= 1) pt.dx = X.middleRows(1, d).transpose();
+  if (order >= 2) pt.ddx = X.middleRows(1 + d, d * (d + 1) / 2).transpose();
+  return pt;
+}
+
+TensorSpace::TensorSpace(NurbsPatch patch) : patch_(std::move(patch)) {
+  for (int a = 0; a < patch_.paramDim(); ++a) spans_[a] = patch_.knots(a).elementSpans();
+}
+
+ElementBox TensorSpace::element(int e) const {
+  ElementBox box;
+  for (int a = 0; a < paramDim(); ++a) {
+    const int ne = static_cast<int>(spans_[a].size());
+    const int s = spans_[a][e % ne];
+    e /= ne;
+    box.lower[a] = patch_.knots(a)[s];
+    box.upper[a] = patch_.knots(a)[s + 1];
+  }
+  return box;
+}
+
+int TensorSpace::findElement(const double* xi) const {
+  int e = 0;
+  for (int a = paramDim() - 1; a >= 0; --a) {
+    const int s = patch_.knots(a).findSpan(xi[a]);
+    const int local = static_cast<int>(std::lower_bound(spans_[a].begin(), spans_[a].end(), s) -
+                                       spans_[a].begin());
+    e = e * static_cast<int>(spans_[a].size()) + local;
+  }
+  return e;
+}
+
+void TensorSpace::elementBasis(int e, const double* xi, int order, PatchBasis& out) const {
+  // The span of the element, not findSpan(xi): xi on the element's upper boundary must use
+  // the element's own polynomial pieces.
+  const int d = paramDim();
+  int spans[3] = {0, 0, 0};
+  for (int a = 0; a < d; ++a) {
+    const int ne = static_cast<int>(spans_[a].size());
+    spans[a] = spans_[a][e % ne];
+    e /= ne;
+  }
+  patch_.rationalBasisOnSpans(spans, xi, order, out);
+}
+
+}  // namespace ffriga
