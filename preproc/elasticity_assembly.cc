@@ -284,6 +284,9 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
         }
       }
     }
+    // Drop the couplings between different components (zero in M).
+    sys.M.prune([](int, int, double v) { return v != 0.0; });
+    sys.M.makeCompressed();
     return sys;
   }
 }
