@@ -1,6 +1,7 @@
 #include "preproc/craig_bampton.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
@@ -12,6 +13,21 @@
 namespace ffriga {
 
 namespace {
+
+// Wall-clock steps into ReducedModel::timings.
+class StepTimer {
+ public:
+  explicit StepTimer(ReducedModel* out) : out_(out), last_(std::chrono::steady_clock::now()) {}
+  void step(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    out_->timings.emplace_back(name, std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+
+ private:
+  ReducedModel* out_;
+  std::chrono::steady_clock::time_point last_;
+};
 
 // Blocks of a symmetric matrix (upper triangle) for the split interior i / interface b.
 struct Partition {
@@ -122,9 +138,11 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
                            << "fixed-interface problem has " << ni << " DOFs (" << n
                            << " in total, " << nb << " on the interface)");
   }
+  StepTimer timer(out);
   SparseMatrix Kii, Kib, Kbb, Mii;
   splitBlocks(K, p, &Kii, &Kib, &Kbb);
   splitBlocks(M, p, &Mii, nullptr, nullptr);
+  timer.step("partition");
   SparseCholesky chol;
   std::string message;
   const auto status = chol.factorize(Kii, &message);
@@ -141,11 +159,18 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
   }
   out->factor_rcond = chol.rcond();
   // A crude estimate (ratio of pivots); singular matrices give round-off level values.
-  if (!(out->factor_rcond > 1e-14)) {
-    throw ComputeError(Str() << "Craig-Bampton reduction: K_ii is numerically singular "
-                             << "(CHOLMOD rcond estimate " << out->factor_rcond
-                             << "): the fixed-interface problem is unconstrained");
+  if (!std::isfinite(out->factor_rcond)) {
+    throw ComputeError(
+        "Craig-Bampton reduction: the factorisation of K_ii has non-finite "
+        "entries (overflow: check the material constants and the geometry)");
   }
+  if (!(out->factor_rcond > 1e-14)) {
+    throw ComputeError(Str() << "Craig-Bampton reduction: the factorisation of K_ii is "
+                             << "numerically singular (CHOLMOD rcond estimate " << out->factor_rcond
+                             << "): the fixed-interface problem is "
+                             << "unconstrained or the stiffness overflowed");
+  }
+  timer.step("factorise K_ii");
   EigenResult modes;
   if (o.normal_modes > 0) {
     EigenOptions eo;
@@ -155,11 +180,13 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
     modes = solveEigenproblem(chol, Mii, eo);
     out->arpack_iterations = modes.iterations;
   }
+  timer.step("fixed-interface modes (ARPACK)");
   out->normal_mode_omega2 = modes.values;
   out->normal_modes = o.normal_modes;
   out->constraint_modes = nb;
   // Constraint modes: X = -K_ii^{-1} K_ib, all right-hand sides at once.
   const Eigen::MatrixXd X = -chol.solve(Eigen::MatrixXd(Kib));
+  timer.step("constraint modes (CHOLMOD)");
   Basis basis;
   const int nm = o.normal_modes;
   basis.Psi.setZero(n, nm + nb);
@@ -221,6 +248,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   ReducedModel out;
   Basis basis = o.method == ReductionMethod::kCraigBampton ? craigBamptonBasis(K, M, o, &out)
                                                            : modalBasis(K, M, o, &out);
+  StepTimer timer(&out);
   const Eigen::MatrixXd& R = o.rigid_modes;
   const Eigen::MatrixXd MR = parallelProduct(M, R);
   const Eigen::MatrixXd RMR = R.transpose() * MR;
@@ -245,6 +273,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
     Mr += -A.transpose() * W - W.transpose() * A + A.transpose() * RMR * A;
   }
   Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  timer.step("reduced mass matrix");
   // Equilibrate (unit diagonal): constraint modes of a small interface have a tiny mass
   // compared with normal modes; scaling keeps the orthonormalisation at round-off level.
   Eigen::VectorXd scale = Mr.diagonal();
@@ -255,10 +284,16 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   // Orthonormalise in the range of Mr: the rigid directions have (numerically) zero mass.
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> em(Mr);
   if (em.info() != Eigen::Success) throw ComputeError("reduced mass matrix: eigen solver failed");
+  // The Craig-Bampton basis contains the rigid modes exactly (K r = 0 gives
+  // r_i = -K_ii^{-1} K_ib r_b), so the projection leaves exactly nr dependent directions:
+  // the nr smallest eigenvalues of the equilibrated Mr (round-off, amplified by the
+  // conditioning of K_ii for slender bodies). The modal basis is M-orthogonal to R already.
+  // Any further direction below 1e-12 of the largest is dropped as well.
   const double mmax = em.eigenvalues().maxCoeff();
+  const int dependent = o.method == ReductionMethod::kCraigBampton ? static_cast<int>(R.cols()) : 0;
   std::vector<int> keep;
-  for (int j = 0; j < Mr.cols(); ++j) {
-    if (em.eigenvalues()(j) > 1e-10 * mmax) keep.push_back(j);
+  for (int j = dependent; j < Mr.cols(); ++j) {
+    if (em.eigenvalues()(j) > 1e-12 * mmax) keep.push_back(j);
   }
   const int kept = static_cast<int>(keep.size());
   Eigen::MatrixXd Z(Mr.rows(), kept);
@@ -276,6 +311,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   out.Phi = basis.Psi * T;
   basis.Psi.resize(0, 0);
   out.Phi -= R * (A * T);
+  timer.step("reduced eigenproblem and modes");
   return out;
 }
 

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -50,6 +51,7 @@ struct ReducedModel {
   Eigen::VectorXd normal_mode_omega2;  // fixed-interface (CB) or free-free (modal) eigenvalues
   double factor_rcond = 0.0;           // CHOLMOD's estimate for K_ii (CB)
   int arpack_iterations = 0;
+  std::vector<std::pair<std::string, double>> timings;  // (step, wall time in s)
 };
 
 // Throws InputError for requests the model cannot satisfy (no interface, more modes than
