@@ -152,7 +152,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
 
   // Invariants, in the body frame.
   std::array<int, 3> massPoints{};
-  for (int a = 0; a < d; ++a) massPoints[a] = space.patch().degree(a) + 5;
+  for (int a = 0; a < d; ++a) massPoints[a] = space.patch().degree(a) + 4;
   const MassProperties mp = massProperties(space, model.density, axi, massPoints);
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   if (ro.frame == FrameKind::kBuckens) {
