@@ -65,7 +65,7 @@ def run(igaprep, body, out, threads):
     proc.stdout.close()
     proc.stderr.close()
     code = os.waitstatus_to_exitcode(status)
-    return code, wall, usage.ru_maxrss / 1024.0, err.strip()
+    return code, wall, usage.ru_maxrss / 1024.0, usage.ru_utime + usage.ru_stime, err.strip()
 
 
 def main():
@@ -84,9 +84,9 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         for body in bodies:
             out = os.path.join(tmp, os.path.basename(body) + ".sid.h5")
-            code, wall, mem, err = run(args.igaprep, body, out, args.threads)
+            code, wall, mem, cpu, err = run(args.igaprep, body, out, args.threads)
             row = {"body": os.path.relpath(body, ROOT), "exit": code, "wall_s": wall,
-                   "peak_mib": mem}
+                   "cpu_s": cpu, "peak_mib": mem}
             if code == 0:
                 with h5py.File(out, "r") as f:
                     a = f.attrs
@@ -108,7 +108,7 @@ def main():
             rows.append(row)
             print(f"  ran {row['body']}: exit {code}, {wall:.2f} s", file=sys.stderr)
 
-    hdr = (f"{'body':<44} {'ndof':>7} {'nq (modes+dim x intf)':>24} {'intf':>5} {'wall s':>8} "
+    hdr = (f"{'body':<44} {'ndof':>7} {'nq (modes+dim x intf)':>24} {'intf':>5} {'wall s':>8} {'cpu s':>8} "
            f"{'peak MiB':>9} | {'paper ndof':>10} {'paper nq':>12} {'paper s':>8} {'target s':>8}")
     print(hdr)
     print("-" * len(hdr))
@@ -122,7 +122,7 @@ def main():
         p = r.get("paper")
         ptxt = (f"{p['ndof']:>10} {p['nq']:>12} {p['time_s']:>8} {r['target_s']:>8}" if p
                 else f"{'-':>10} {'-':>12} {'-':>8} {'-':>8}")
-        print(f"{r['body']:<44} {r['ndof']:>7} {nq:>24} {r['interface']:>5} {r['wall_s']:>8.2f} "
+        print(f"{r['body']:<44} {r['ndof']:>7} {nq:>24} {r['interface']:>5} {r['wall_s']:>8.2f} {r['cpu_s']:>8.2f} "
               f"{r['peak_mib']:>9.1f} | {ptxt}")
     print("\n* constraint modes != dim x interface points: axis points (u_r = 0) have one DOF.")
     print("nq = normal + constraint modes - rigid directions dropped (paper: normal + dim x interface).")

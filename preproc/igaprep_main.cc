@@ -52,6 +52,14 @@ double peakMemoryMiB() {
   return u.ru_maxrss / 1024.0;  // Linux: kilobytes
 }
 
+// User + system CPU time of this process (all threads), s: next to the wall time it shows
+// how much of the machine the run had.
+double cpuSeconds() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
 void printGeometry(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
   if (verbosity == 0) return;
   const int d = patch.paramDim();
@@ -194,6 +202,7 @@ int main(int argc, char** argv) {
         std::printf("  time %-23s %.3f s\n", stage.c_str(), t);
       std::printf("  time %-23s %.3f s\n", "write", writeTime);
       std::printf("  %-28s %.3f s\n", "total wall time", elapsed());
+      std::printf("  %-28s %.3f s\n", "total CPU time", cpuSeconds());
       std::printf("  %-28s %.1f MiB\n", "peak memory", peakMemoryMiB());
     }
     return 0;
