@@ -60,8 +60,12 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   sid.reduction = config.reduction.method;
   sid.frame = config.reduction.frame;
 
-  // Geometry.
-  const TensorSpace space(refinedPatch(config));
+  // Geometry. Everything below works on the abstract SplineSpace (a hierarchical space can
+  // take the tensor space's place); the quadrature degrees come from the refined patch, and
+  // the contact surface is Bezier-extracted from the tensor patch.
+  const NurbsPatch patch = refinedPatch(config);
+  const TensorSpace tensor(patch);
+  const SplineSpace& space = tensor;
   const int s = space.spaceDim();
   const int d = space.paramDim();
   sid.space_dim = s;
@@ -82,7 +86,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   model.youngs_modulus = config.material.youngs_modulus;
   model.poisson_ratio = config.material.poisson_ratio;
   model.density = config.material.density;
-  for (int a = 0; a < d; ++a) model.gauss_points[a] = space.patch().degree(a) + 1;
+  for (int a = 0; a < d; ++a) model.gauss_points[a] = patch.degree(a) + 1;
   const ElasticSystem sys = assembleElasticity(space, dofs, model);
   clock.done("assembly", Str() << "K: " << sys.K.nonZeros() << " stored entries (upper)");
 
@@ -152,7 +156,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
 
   // Invariants, in the body frame.
   std::array<int, 3> massPoints{};
-  for (int a = 0; a < d; ++a) massPoints[a] = space.patch().degree(a) + 4;
+  for (int a = 0; a < d; ++a) massPoints[a] = patch.degree(a) + 3;
   const MassProperties mp = massProperties(space, model.density, axi, massPoints);
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   if (ro.frame == FrameKind::kBuckens) {
@@ -187,7 +191,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
 
   // Contact surface and markers.
   if (config.contact.present) {
-    ContactSurface cs = extractFaceSurface(space, region, config.contact.name);
+    ContactSurface cs = extractFaceSurface(tensor, region, config.contact.name);
     sid.surfaces.push_back(std::move(cs));
   }
   for (const MarkerConfig& m : config.markers) {

@@ -60,6 +60,9 @@ void splitBlocks(const SparseMatrix& A, const Partition& p, SparseMatrix* Aii, S
   const int nb = static_cast<int>(p.boundary.size());
   std::vector<int> outer(1, 0), inner;
   std::vector<double> values;
+  outer.reserve(ni + 1);
+  inner.reserve(A.nonZeros());
+  values.reserve(A.nonZeros());
   std::vector<Eigen::Triplet<double>> ib, bb;
   for (int j = 0; j < A.outerSize(); ++j) {
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) {

@@ -6,7 +6,8 @@
 //     Gauss quadrature of the geometry map with more points than p + 1 (the integrands are
 //     rational). Measured relative errors of m and J0 of the sphere (degree 3, n x n x 2n
 //     elements) with p + 1 + k points: n = 2: 4e-6 (k = 0), 2e-9 (k = 2), 1e-10 (k = 3);
-//     n = 4: 3e-9 (k = 0), 1e-15 (k = 3); n = 8: 2e-11 (k = 0). igaprep uses k = 3.
+//     n = 4: 3e-9 (k = 0), 7e-15 (k = 2); n = 8: 2e-11 (k = 0), 1e-15 (k = 1). igaprep uses
+//     k = 2 (the paper's models have n >= 8).
 //   * elastic invariants from the scalar mass matrix Ms (elasticity_assembly.h): since
 //     x0 = sum_b R_b X_b and Phi(x0) = sum_b R_b Phi_b, every integral of a product of two
 //     such fields is a bilinear form in Ms:
