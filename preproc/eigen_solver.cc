@@ -1,5 +1,7 @@
 #include "preproc/eigen_solver.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <numeric>
 #include <vector>
@@ -77,6 +79,32 @@ std::string dseupdMessage(int info) {
   }
 }
 
+// ARPACK applies the operator one vector at a time: CHOLMOD's single-RHS solves are
+// BLAS-2 calls too small to share between threads, and a multithreaded BLAS (OpenBLAS)
+// spends more time synchronising than computing (measured 3x slower on 2 cores). While in
+// scope, a multithreaded OpenBLAS, if it is the BLAS in use, runs on one thread; other BLAS
+// libraries are left alone (the symbols are looked up at run time).
+class SingleThreadedBlas {
+ public:
+  SingleThreadedBlas() {
+    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+    auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+    if (set_ && get) {
+      previous_ = get();
+      set_(1);
+    }
+  }
+  ~SingleThreadedBlas() {
+    if (set_ && previous_ > 0) set_(previous_);
+  }
+  SingleThreadedBlas(const SingleThreadedBlas&) = delete;
+  SingleThreadedBlas& operator=(const SingleThreadedBlas&) = delete;
+
+ private:
+  void (*set_)(int) = nullptr;
+  int previous_ = 0;
+};
+
 }  // namespace
 
 EigenResult solveEigenproblem(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& o) {
@@ -121,6 +149,7 @@ EigenResult solveEigenproblem(const SparseCholesky& chol, const SparseMatrix& M,
   const char which[] = "LM";
   EigenResult result;
   std::vector<double> tmp(n);
+  const SingleThreadedBlas singleThreaded;
   while (true) {
     dsaupd_(&ido, &bmat, &n, which, &nev, &o.tolerance, resid.data(), &ncv, v.data(), &n, iparam,
             ipntr, workd.data(), workl.data(), &lworkl, &info, 1, 2);
