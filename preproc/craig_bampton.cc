@@ -7,6 +7,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/error.h"
+#include "preproc/dense_products.h"
 #include "preproc/eigen_solver.h"
 #include "preproc/sparse_cholesky.h"
 
@@ -255,7 +256,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   const Eigen::MatrixXd& R = o.rigid_modes;
   const Eigen::MatrixXd MR = parallelProduct(M, R);
   const Eigen::MatrixXd RMR = R.transpose() * MR;
-  Eigen::MatrixXd Mr = basis.Psi.transpose() * parallelProduct(M, basis.Psi);
+  Eigen::MatrixXd Mr = transposeTimes(basis.Psi, parallelProduct(M, basis.Psi));
   const Eigen::MatrixXd W = MR.transpose() * basis.Psi;  // R^T M Psi
   Eigen::MatrixXd A;                                     // Phi' = Psi - R A
   if (o.frame == FrameKind::kBuckens) {
@@ -311,7 +312,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   const Eigen::MatrixXd T = scale.asDiagonal() * (Z * ek.eigenvectors());
   out.omega2 = ek.eigenvalues();
   basis.Kr.resize(0, 0);
-  out.Phi = basis.Psi * T;
+  out.Phi = times(basis.Psi, T);
   basis.Psi.resize(0, 0);
   out.Phi -= R * (A * T);
   timer.step("reduced eigenproblem and modes");

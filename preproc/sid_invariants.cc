@@ -4,6 +4,7 @@
 
 #include "common/error.h"
 #include "common/gauss_legendre.h"
+#include "preproc/dense_products.h"
 
 namespace ffriga {
 
@@ -136,9 +137,9 @@ void computeElasticInvariants(const SparseMatrix& Ms, const Eigen::MatrixXd& X,
     // A_cd(j, i) = int rho Phi_jc Phi_id; Cr1_j(:, i) = int rho Phi_j x Phi_i.
     std::vector<Eigen::MatrixXd> MP(3);
     for (int c = 0; c < 3; ++c) MP[c] = full * Pc[c];
-    const Eigen::MatrixXd A01 = Pc[0].transpose() * MP[1];
-    const Eigen::MatrixXd A02 = Pc[0].transpose() * MP[2];
-    const Eigen::MatrixXd A12 = Pc[1].transpose() * MP[2];
+    const Eigen::MatrixXd A01 = transposeTimes(Pc[0], MP[1]);
+    const Eigen::MatrixXd A02 = transposeTimes(Pc[0], MP[2]);
+    const Eigen::MatrixXd A12 = transposeTimes(Pc[1], MP[2]);
     for (int j = 0; j < nq; ++j) {
       sid->Cr1[j].row(0) = A12.row(j) - A12.col(j).transpose();
       sid->Cr1[j].row(1) = A02.col(j).transpose() - A02.row(j);
