@@ -112,7 +112,8 @@ struct FlexibleBodySid {
   // The Coriolis term int rho Phi^T w~ Phi dV qdot follows from Cr1:
   //   (int rho Phi_i^T w~ Phi_j dV) = w . Cr1_j(:, i).
   Eigen::MatrixXd Oe;
-  // Modal damping (sid.h De) as given: damping ratio of each elastic coordinate.
+  // Modal damping ratio zeta_i of each elastic coordinate from the body file's rule
+  // (De = diag(2 zeta omega)).
   Eigen::VectorXd damping_ratio;  // nq, dimensionless
   // Second-order terms int rho Phi_i^T Phi_j dV = Me and the q^2 part of J are dropped
   // (small deformations, paper Sect. 2).
