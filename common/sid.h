@@ -20,6 +20,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -43,8 +44,9 @@ struct ContactSurface {
   std::vector<int> function_offsets;        // ne + 1, CSR offsets into functions / extraction
   std::vector<int> functions;               // active body control points per element
   std::vector<Eigen::MatrixXd> extraction;  // per element: n_active x prod(degrees + 1)
-  double outward_sign = 1.0;                // +1 if d x/ds_0 x d x/ds_1 (2D: rotated tangent)
-                                            // points out of the body, -1 otherwise
+  double outward_sign = 1.0;                // +1 if d x/ds_0 x d x/ds_1 (2D: the tangent
+                                            // rotated clockwise, (dy/ds, -dx/ds)) points out
+                                            // of the body, -1 otherwise
   // Collocation (Botella) points, one per surface function in the contact region
   // (Sect. 4): surface parameters, element, and weight = integral of the function over the
   // undeformed surface (m^2 in 3D; m, per radian not included, in 2D).
@@ -71,8 +73,20 @@ struct FlexibleBodySid {
   int nlvl = 1;       // hierarchical levels
   int n_elements = 0;
   int n_interface_control_points = 0;
-  std::string frame;       // "buckens" or "tangent"
-  std::string input_yaml;  // the body file's text
+  std::string frame;            // "buckens" or "tangent"
+  std::string input_yaml;       // the body file's text
+  std::string input_path;       // the body file as given to igaprep
+  std::string created_by;       // program and version, e.g. "igaprep 0.1.0"
+  std::string reduction;        // "craig_bampton" or "modal"
+  int normal_modes = 0;         // fixed-interface (CB) or free-free (modal) modes in the basis
+  int constraint_modes = 0;     // CB constraint modes (interface DOFs)
+  int rigid_modes_dropped = 0;  // zero-frequency directions removed (1 axisymmetric, 6 3D)
+  // Origin of the body frame in the coordinates of the body file's geometry, m (Buckens:
+  // the centre of mass; tangent: the frame marker). Control points, markers and surfaces
+  // below are in the body frame: x_body = x_geometry - frame_origin.
+  Eigen::Vector3d frame_origin = Eigen::Vector3d::Zero();
+  double preprocessing_time_s = 0.0;                          // wall time of igaprep, s
+  std::vector<std::pair<std::string, double>> stage_times_s;  // (stage, wall time in s)
 
   // Rigid-body invariants (body frame). For an axisymmetric body: of the full body of
   // revolution, with the axis along y.
@@ -98,6 +112,9 @@ struct FlexibleBodySid {
   // The Coriolis term int rho Phi^T w~ Phi dV qdot follows from Cr1:
   //   (int rho Phi_i^T w~ Phi_j dV) = w . Cr1_j(:, i).
   Eigen::MatrixXd Oe;
+  // Modal damping ratio zeta_i of each elastic coordinate from the body file's rule
+  // (De = diag(2 zeta omega)).
+  Eigen::VectorXd damping_ratio;  // nq, dimensionless
   // Second-order terms int rho Phi_i^T Phi_j dV = Me and the q^2 part of J are dropped
   // (small deformations, paper Sect. 2).
 

@@ -3,6 +3,7 @@
 #include "common/json_schema.h"
 #include "common/refinement.h"
 #include "common/schemas.h"
+#include "preproc/contact_region.h"
 #include "preproc/geometry_builders.h"
 
 namespace ffriga {
@@ -81,7 +82,131 @@ std::vector<int> perDirection(const YamlDocument& doc, const YAML::Node& node,
   return v;
 }
 
+void parseContact(const YamlDocument& doc, const YAML::Node& node, const NurbsPatch& patch,
+                  ContactConfig* c) {
+  if (!node) return;
+  c->present = true;
+  if (node["name"]) c->name = getString(doc, node["name"], "contact.name");
+  const std::string face = getString(doc, node["face"], "contact.face");
+  parseFaceName(face, &c->direction, &c->upper);  // the schema's enum has checked the name
+  const int d = patch.paramDim();
+  if (c->direction >= d) {
+    throw inputError(doc, node["face"], "contact.face",
+                     Str() << "face '" << face << "' does not exist on a patch with " << d
+                           << " parametric directions");
+  }
+  const YAML::Node region = node["region"];
+  if (static_cast<int>(region.size()) != d - 1) {
+    throw inputError(doc, region, "contact.region",
+                     Str() << "expected one [lo, hi] pair per parametric direction along the "
+                           << "face (" << d - 1 << "), found " << region.size());
+  }
+  int s = 0;
+  for (int a = 0; a < d; ++a) {
+    if (a == c->direction) continue;
+    const std::string key = Str() << "contact.region[" << s << "]";
+    const double lo = getDouble(doc, region[s][0], key);
+    const double hi = getDouble(doc, region[s][1], key);
+    const double u0 = patch.knots(a).front(), u1 = patch.knots(a).back();
+    if (!(lo < hi) || lo < u0 || hi > u1) {
+      throw inputError(doc, region[s], key,
+                       Str() << "expected lo < hi inside the knot range [" << u0 << ", " << u1
+                             << "] of direction " << a << ", found [" << lo << ", " << hi << "]");
+    }
+    c->bounds.push_back({lo, hi});
+    ++s;
+  }
+}
+
+void parseMarkers(const YamlDocument& doc, const YAML::Node& node, const NurbsPatch& patch,
+                  std::vector<MarkerConfig>* markers) {
+  if (!node) return;
+  const int d = patch.paramDim();
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    const std::string key = Str() << "markers[" << i << "]";
+    MarkerConfig m;
+    m.name = getString(doc, node[i]["name"], key + ".name");
+    for (const auto& other : *markers) {
+      if (other.name == m.name) {
+        throw inputError(doc, node[i]["name"], key + ".name",
+                         "marker name '" + m.name + "' is used twice");
+      }
+    }
+    const YAML::Node p = node[i]["parameters"];
+    if (static_cast<int>(p.size()) != d) {
+      throw inputError(doc, p, key + ".parameters",
+                       Str() << "expected " << d << " parametric coordinates, found " << p.size());
+    }
+    for (int a = 0; a < d; ++a) {
+      const double v = getDouble(doc, p[a], key + ".parameters");
+      if (v < patch.knots(a).front() || v > patch.knots(a).back()) {
+        throw inputError(doc, p[a], key + ".parameters",
+                         Str() << "parameter " << a << " = " << v << " lies outside the knot "
+                               << "range [" << patch.knots(a).front() << ", "
+                               << patch.knots(a).back() << "]");
+      }
+      m.parameters.push_back(v);
+    }
+    markers->push_back(std::move(m));
+  }
+}
+
+void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasContact,
+                    const std::vector<MarkerConfig>& markers, ReductionConfig* r) {
+  if (node) {
+    if (node["method"]) r->method = getString(doc, node["method"], "reduction.method");
+    if (node["normal_modes"])
+      r->normal_modes = getInt(doc, node["normal_modes"], "reduction.normal_modes");
+    if (node["frame"]) r->frame = getString(doc, node["frame"], "reduction.frame");
+    if (node["frame_marker"])
+      r->frame_marker = getString(doc, node["frame_marker"], "reduction.frame_marker");
+    const YAML::Node damping = node["damping"];
+    for (std::size_t i = 0; damping && i < damping.size(); ++i) {
+      const std::string key = Str() << "reduction.damping[" << i << "]";
+      DampingBand b;
+      b.from_hz = getDouble(doc, damping[i]["from_hz"], key + ".from_hz");
+      if (damping[i]["to_hz"]) b.to_hz = getDouble(doc, damping[i]["to_hz"], key + ".to_hz");
+      b.ratio = getDouble(doc, damping[i]["ratio"], key + ".ratio");
+      if (!(b.to_hz > b.from_hz)) {
+        throw inputError(
+            doc, damping[i], key,
+            Str() << "expected from_hz < to_hz, found [" << b.from_hz << ", " << b.to_hz << ")");
+      }
+      r->damping.push_back(b);
+    }
+  }
+  const YAML::Node where = node ? node : doc.root;
+  // Without a `reduction` block the file may still serve for geometry checks; igaprep -o
+  // repeats this check (preprocessBody).
+  if (node && r->method == "craig_bampton" && !hasContact) {
+    throw inputError(doc, where, "reduction.method",
+                     "craig_bampton needs a contact region (key 'contact') for its interface");
+  }
+  if (r->method == "modal" && r->normal_modes < 1) {
+    throw inputError(doc, node["normal_modes"], "reduction.normal_modes",
+                     "the modal method needs at least one normal mode, found 0");
+  }
+  if (r->frame == "tangent") {
+    bool found = false;
+    for (const auto& m : markers) found = found || m.name == r->frame_marker;
+    if (!found) {
+      throw inputError(doc, where, "reduction.frame_marker",
+                       r->frame_marker.empty()
+                           ? std::string("frame: tangent needs frame_marker, the name of a marker")
+                           : "no marker named '" + r->frame_marker + "' (see key 'markers')");
+    }
+  }
+}
+
 }  // namespace
+
+double ReductionConfig::dampingRatio(double f_hz) const {
+  double zeta = 0.0;
+  for (const DampingBand& b : damping) {
+    if (f_hz >= b.from_hz && f_hz < b.to_hz) zeta = b.ratio;
+  }
+  return zeta;
+}
 
 BodyConfig parseBodyConfig(YamlDocument doc) {
   static const JsonSchema schema(kBodySchema, "body.schema.json");
@@ -146,6 +271,9 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
                              << " exceeds the maximum degree " << kMaxDegree);
     }
   }
+  parseContact(doc, root["contact"], c.geometry, &c.contact);
+  parseMarkers(doc, root["markers"], c.geometry, &c.markers);
+  parseReduction(doc, root["reduction"], c.contact.present, c.markers, &c.reduction);
   c.source = std::move(doc);
   return c;
 }

@@ -1,27 +1,40 @@
-// igaprep: from a body file to a reduced flexible body.
+// igaprep: from a body file to a reduced flexible body (SID file).
 //
-//   igaprep BODY.yaml [-q|-v] [--threads N]
+//   igaprep BODY.yaml -o BODY.sid.h5 [-q|-v] [--threads N]
+//   igaprep BODY.yaml                  (geometry summary only)
+//   igaprep --info FILE.sid.h5         (summary of a SID file)
 //
-// Reads the body file (schemas/body.schema.json), builds the exact NURBS patch, applies
-// the global refinement (degree elevation, then uniform knot insertion) and prints a
-// summary: degrees, elements and control points per direction, coincident control points.
+// Pipeline (preproc/body_reduction.h): geometry and global refinement, elasticity
+// assembly, Craig-Bampton or modal reduction in a Buckens or tangent frame, SID invariants,
+// contact surface and markers, then the SID file (common/sid_file.h), written atomically.
+#include <sys/resource.h>
+
+#include <chrono>
 #include <cstdio>
 #include <iostream>
 
 #include "common/cli.h"
+#include "common/sid_file.h"
 #include "common/version.h"
 #include "preproc/body_config.h"
+#include "preproc/body_reduction.h"
 
 namespace {
 
-constexpr const char* kUsage = R"(usage: igaprep BODY.yaml [options]
+constexpr const char* kUsage = R"(usage: igaprep BODY.yaml -o BODY.sid.h5 [options]
+       igaprep BODY.yaml [options]
+       igaprep --info FILE.sid.h5
 
-Builds the exact NURBS model of a flexible body from its body file and refines it
-globally (degree elevation, then uniform knot insertion); prints degrees, elements and
-control points per parametric direction.
+Builds the reduced flexible body of a body file: exact NURBS geometry, global refinement
+(degree elevation, then uniform knot insertion), linear elastic assembly, Craig-Bampton or
+modal reduction in a Buckens or tangent floating frame, the SID invariants, the contact
+surface and the markers, written to one HDF5 file (schemas/sid_format.md). Without -o,
+prints the refined geometry only.
 
 options:
-  -q, --quiet        print nothing but errors
+  -o, --output FILE  write the SID file (atomically: nothing is left behind on failure)
+  --info FILE        print a summary of a SID file and exit
+  -q, --quiet        print nothing but errors (no progress, no summary)
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
   -h, --help         show this help and exit
@@ -33,7 +46,21 @@ Exit codes: 0 success, 2 bad input or usage, 1 failure while computing.
 
 const char* kDirectionNames[3] = {"xi", "eta", "zeta"};
 
-void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
+double peakMemoryMiB() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
+  return u.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
+
+// User + system CPU time of this process (all threads), s: next to the wall time it shows
+// how much of the machine the run had.
+double cpuSeconds() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
+  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+void printGeometry(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
   if (verbosity == 0) return;
   const int d = patch.paramDim();
   std::printf("igaprep %s: body '%s' from %s\n", ffriga::kVersion, c.name.c_str(),
@@ -47,7 +74,6 @@ void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, 
                 patch.knots(a).numElements(), patch.numBasis(a));
   }
   std::printf("  %-9s %7s %9d %15d\n", "total", "", patch.numElements(), patch.numControlPoints());
-  // Coincident control points: absolute tolerance relative to the patch size.
   const double size =
       (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff()).maxCoeff();
   const auto groups = ffriga::coincidentControlPoints(patch, 1e-12 * size);
@@ -72,11 +98,53 @@ void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, 
   }
 }
 
+void printSidSummary(const ffriga::FlexibleBodySid& s, const std::string& path) {
+  std::printf("SID file %s (%s)\n", path.c_str(), s.created_by.c_str());
+  std::printf("  body                 %s (%s, %dD data), from %s\n", s.name.c_str(),
+              s.model.c_str(), s.space_dim, s.input_path.c_str());
+  std::printf("  ndof                 %d\n", s.ndof);
+  std::printf("  elements / levels    %d / %d\n", s.n_elements, s.nlvl);
+  std::printf("  reduction            %s, frame %s\n", s.reduction.c_str(), s.frame.c_str());
+  std::printf("  nq                   %d = %d normal + %d constraint - %d rigid\n", s.nq(),
+              s.normal_modes, s.constraint_modes, s.rigid_modes_dropped);
+  std::printf("  interface points     %d\n", s.n_interface_control_points);
+  if (s.nq() > 0) {
+    std::printf("  frequencies          %.6g .. %.6g Hz\n", s.frequencies_hz.minCoeff(),
+                s.frequencies_hz.maxCoeff());
+    int damped = 0;
+    for (int i = 0; i < s.nq(); ++i) damped += s.damping_ratio(i) > 0.0;
+    std::printf("  damped modes         %d of %d\n", damped, s.nq());
+  }
+  std::printf("  mass                 %.10g kg\n", s.mass);
+  std::printf("  frame origin         (%.6g, %.6g, %.6g) m\n", s.frame_origin(0), s.frame_origin(1),
+              s.frame_origin(2));
+  std::printf("  inertia diag         (%.6g, %.6g, %.6g) kg m^2\n", s.inertia(0, 0),
+              s.inertia(1, 1), s.inertia(2, 2));
+  std::printf("  control points       %d\n", static_cast<int>(s.control_points.rows()));
+  for (const auto& c : s.surfaces) {
+    std::printf("  contact surface      '%s': %zu elements, %zu functions, %d collocation points\n",
+                c.name.c_str(), c.element_level.size(), c.functions.size(),
+                static_cast<int>(c.collocation_points.rows()));
+  }
+  for (const auto& m : s.markers) std::printf("  marker               '%s'\n", m.name.c_str());
+  std::printf("  preprocessing time   %.3f s\n", s.preprocessing_time_s);
+  for (const auto& [stage, t] : s.stage_times_s)
+    std::printf("    %-18s %.3f s\n", stage.c_str(), t);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return ffriga::runProgram("igaprep", [&]() {
-    const ffriga::CommonOptions o = ffriga::parseCommonOptions(argc, argv);
+    const auto start = std::chrono::steady_clock::now();
+    std::string info;
+    const ffriga::CommonOptions o =
+        ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
+          if (std::string(av[i]) != "--info") return 0;
+          if (i + 1 >= ac) throw ffriga::UsageError("option --info needs a SID file");
+          info = av[i + 1];
+          return 2;
+        });
     if (o.help) {
       std::cout << kUsage;
       return 0;
@@ -85,17 +153,58 @@ int main(int argc, char** argv) {
       std::cout << "igaprep " << ffriga::kVersion << "\n";
       return 0;
     }
+    if (!info.empty()) {
+      if (!o.positional.empty() || !o.output.empty())
+        throw ffriga::UsageError("--info takes one SID file and no other arguments");
+      printSidSummary(ffriga::readSid(info), info);
+      return 0;
+    }
     if (o.positional.size() != 1) {
       throw ffriga::UsageError(ffriga::Str() << "expected one body file, found "
                                              << o.positional.size() << " arguments (see --help)");
     }
-    if (!o.output.empty()) {
-      throw ffriga::UsageError("-o: writing SID files is not available in this version");
-    }
     ffriga::applyThreads(o.threads);
     const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0]);
-    const ffriga::NurbsPatch patch = ffriga::refinedPatch(config);
-    printSummary(config, patch, o.verbosity);
+    if (o.output.empty()) {
+      printGeometry(config, ffriga::refinedPatch(config), o.verbosity);
+      return 0;
+    }
+    auto log = [&](const std::string& line) {
+      if (o.verbosity > 0) std::cerr << "igaprep: " << line << std::endl;
+    };
+    ffriga::PreprocessSummary summary;
+    ffriga::FlexibleBodySid sid = ffriga::preprocessBody(config, log, &summary);
+    auto elapsed = [&]() {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
+    sid.preprocessing_time_s = elapsed();
+    const double beforeWrite = elapsed();
+    ffriga::writeSid(sid, o.output);
+    const double writeTime = elapsed() - beforeWrite;
+    log(ffriga::Str() << "write: " << o.output << " (" << writeTime << " s)");
+    if (o.verbosity > 0) {
+      std::printf("igaprep %s: %s -> %s\n", ffriga::kVersion, config.source.path.c_str(),
+                  o.output.c_str());
+      std::printf("  %-28s %s, %s frame\n", "model", sid.model.c_str(), sid.frame.c_str());
+      std::printf("  %-28s %d (%d control points, %d tied, %d fixed on the axis)\n", "ndof",
+                  summary.ndof, summary.num_control_points, summary.tied_points,
+                  summary.fixed_dofs);
+      std::printf("  %-28s %d (%d DOFs)\n", "interface control points",
+                  summary.interface_control_points, summary.interface_dofs);
+      std::printf("  %-28s %d = %d normal + %d constraint - %d rigid\n", "nq", sid.nq(),
+                  sid.normal_modes, sid.constraint_modes, sid.rigid_modes_dropped);
+      if (sid.nq() > 0) {
+        std::printf("  %-28s %.6g .. %.6g Hz\n", "frequencies", sid.frequencies_hz.minCoeff(),
+                    sid.frequencies_hz.maxCoeff());
+      }
+      std::printf("  %-28s %.10g kg\n", "mass", sid.mass);
+      for (const auto& [stage, t] : sid.stage_times_s)
+        std::printf("  time %-23s %.3f s\n", stage.c_str(), t);
+      std::printf("  time %-23s %.3f s\n", "write", writeTime);
+      std::printf("  %-28s %.3f s\n", "total wall time", elapsed());
+      std::printf("  %-28s %.3f s\n", "total CPU time", cpuSeconds());
+      std::printf("  %-28s %.1f MiB\n", "peak memory", peakMemoryMiB());
+    }
     return 0;
   });
 }

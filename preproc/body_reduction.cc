@@ -1,0 +1,207 @@
+#include "preproc/body_reduction.h"
+
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include "common/error.h"
+#include "common/version.h"
+#include "preproc/bezier_face_extraction.h"
+#include "preproc/contact_region.h"
+#include "preproc/craig_bampton.h"
+#include "preproc/dof_map.h"
+#include "preproc/elasticity_assembly.h"
+#include "preproc/marker_points.h"
+#include "preproc/rigid_body_modes.h"
+#include "preproc/sid_invariants.h"
+
+namespace ffriga {
+
+namespace {
+
+const double kPi = std::acos(-1.0);
+
+class StageClock {
+ public:
+  StageClock(FlexibleBodySid* sid, const std::function<void(const std::string&)>& log)
+      : sid_(sid), log_(log), last_(std::chrono::steady_clock::now()) {}
+  void done(const std::string& stage, const std::string& detail) {
+    const auto now = std::chrono::steady_clock::now();
+    const double dt = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    sid_->stage_times_s.emplace_back(stage, dt);
+    if (log_) log_(Str() << stage << ": " << detail << " (" << dt << " s)");
+  }
+
+ private:
+  FlexibleBodySid* sid_;
+  std::function<void(const std::string&)> log_;
+  std::chrono::steady_clock::time_point last_;
+};
+
+}  // namespace
+
+FlexibleBodySid preprocessBody(const BodyConfig& config,
+                               const std::function<void(const std::string&)>& log,
+                               PreprocessSummary* summary) {
+  if (config.reduction.method == "craig_bampton" && !config.contact.present) {
+    throw InputError(Str() << config.source.path << ": the Craig-Bampton reduction (the default "
+                           << "of key 'reduction.method') needs a contact region: add the key "
+                           << "'contact' with face and region, or choose method: modal");
+  }
+  FlexibleBodySid sid;
+  StageClock clock(&sid, log);
+  const bool axi = config.model == BodyModel::kAxisymmetric;
+  sid.name = config.name;
+  sid.model = toString(config.model);
+  sid.input_yaml = config.source.text;
+  sid.input_path = config.source.path;
+  sid.created_by = Str() << "igaprep " << kVersion;
+  sid.reduction = config.reduction.method;
+  sid.frame = config.reduction.frame;
+
+  // Geometry. Everything below works on the abstract SplineSpace (a hierarchical space can
+  // take the tensor space's place); the quadrature degrees come from the refined patch, and
+  // the contact surface is Bezier-extracted from the tensor patch.
+  const NurbsPatch patch = refinedPatch(config);
+  const TensorSpace tensor(patch);
+  const SplineSpace& space = tensor;
+  const int s = space.spaceDim();
+  const int d = space.paramDim();
+  sid.space_dim = s;
+  sid.nlvl = 1;
+  sid.n_elements = space.numElements();
+  const DofMap dofs(space, axi);
+  sid.ndof = dofs.numDofs();
+  summary->ndof = dofs.numDofs();
+  summary->num_control_points = space.numFunctions();
+  summary->tied_points = dofs.numTiedPoints();
+  summary->fixed_dofs = dofs.numFixedDofs();
+  clock.done("geometry", Str() << space.numElements() << " elements, " << space.numFunctions()
+                               << " control points, " << dofs.numDofs() << " DOFs");
+
+  // Assembly.
+  ElasticityModel model;
+  model.axisymmetric = axi;
+  model.youngs_modulus = config.material.youngs_modulus;
+  model.poisson_ratio = config.material.poisson_ratio;
+  model.density = config.material.density;
+  for (int a = 0; a < d; ++a) model.gauss_points[a] = patch.degree(a) + 1;
+  const ElasticSystem sys = assembleElasticity(space, dofs, model);
+  clock.done("assembly", Str() << "K: " << sys.K.nonZeros() << " stored entries (upper)");
+
+  // Interface.
+  ReductionOptions ro;
+  ro.method =
+      config.reduction.method == "modal" ? ReductionMethod::kModal : ReductionMethod::kCraigBampton;
+  ro.frame = config.reduction.frame == "tangent" ? FrameKind::kTangent : FrameKind::kBuckens;
+  ro.normal_modes = config.reduction.normal_modes;
+  ro.rigid_modes = rigidBodyModes(space, dofs, axi);
+  ContactRegion region;
+  if (config.contact.present) {
+    region.direction = config.contact.direction;
+    region.upper = config.contact.upper;
+    region.bounds = config.contact.bounds;
+  }
+  if (ro.method == ReductionMethod::kCraigBampton) {
+    const std::vector<int> cps = interfaceControlPoints(space, region);
+    std::set<int> nodes;
+    ro.interface.assign(dofs.numDofs(), false);
+    for (int k : cps) {
+      nodes.insert(dofs.node(k));
+      for (int c = 0; c < s; ++c) {
+        if (dofs.dof(k, c) >= 0) ro.interface[dofs.dof(k, c)] = true;
+      }
+    }
+    for (bool b : ro.interface) summary->interface_dofs += b;
+    summary->interface_control_points = static_cast<int>(nodes.size());
+    if (cps.empty()) {
+      throw InputError(Str() << config.source.path << ": contact.region selects no control "
+                             << "point on face " << faceName(region.direction, region.upper)
+                             << ": the interface is empty");
+    }
+  }
+  sid.n_interface_control_points = summary->interface_control_points;
+  std::vector<double> frameXi;
+  for (const MarkerConfig& m : config.markers) {
+    if (m.name == config.reduction.frame_marker) frameXi = m.parameters;
+  }
+  if (ro.frame == FrameKind::kTangent) {
+    ro.frame_conditions = tangentFrameConditions(space, dofs, frameXi, axi);
+  }
+  ReducedModel red;
+  try {
+    red = reduceBody(sys.K, sys.M, ro);
+  } catch (const InputError& e) {
+    throw InputError(Str() << config.source.path << ": " << e.what());
+  } catch (const ComputeError& e) {
+    throw ComputeError(Str() << config.source.path << ": " << e.what());
+  }
+  for (const auto& [step, t] : red.timings) {
+    if (log) log(Str() << "  reduction step " << step << ": " << t << " s");
+  }
+  summary->factor_rcond = red.factor_rcond;
+  summary->arpack_iterations = red.arpack_iterations;
+  sid.normal_modes = red.normal_modes;
+  sid.constraint_modes = red.constraint_modes;
+  sid.rigid_modes_dropped = red.rigid_dropped;
+  const int nq = static_cast<int>(red.omega2.size());
+  if (nq > 0 && red.omega2(0) <= 0.0) {
+    throw ComputeError(Str() << "reduction: the lowest reduced eigenvalue is " << red.omega2(0)
+                             << " (rad/s)^2; a rigid-body direction was not removed");
+  }
+  clock.done("reduction", Str() << config.reduction.method << ", " << red.normal_modes
+                                << " normal + " << red.constraint_modes << " constraint modes, "
+                                << red.rigid_dropped << " rigid directions dropped, nq = " << nq);
+
+  // Invariants, in the body frame.
+  std::array<int, 3> massPoints{};
+  for (int a = 0; a < d; ++a) massPoints[a] = patch.degree(a) + 3;
+  const MassProperties mp = massProperties(space, model.density, axi, massPoints);
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  if (ro.frame == FrameKind::kBuckens) {
+    origin = mp.centreOfMass();
+    if (axi) origin(0) = origin(2) = 0.0;  // on the axis by symmetry
+  } else {
+    const Marker fm = evaluateMarker(space, config.reduction.frame_marker, frameXi);
+    origin.head(s) = fm.position;
+    if (axi) origin(0) = 0.0;  // the frame of a body of revolution stays on its axis
+  }
+  sid.frame_origin = origin;
+  const MassProperties body = mp.shifted(origin);
+  sid.mass = body.mass;
+  sid.first_moment = body.first_moment;
+  sid.inertia = body.inertia;
+  sid.control_points = space.controlPoints();
+  for (int k = 0; k < sid.control_points.rows(); ++k)
+    sid.control_points.row(k) -= origin.head(s).transpose();
+  sid.weights = space.weights();
+  sid.Phi = dofs.expand(red.Phi);
+  computeElasticInvariants(sys.Ms, sid.control_points, sid.Phi, axi, &sid);
+  sid.frequencies_hz = red.omega2.cwiseSqrt() / (2.0 * kPi);
+  sid.Me = Eigen::MatrixXd::Identity(nq, nq);
+  sid.Ke = red.omega2.asDiagonal();
+  sid.damping_ratio.resize(nq);
+  sid.De = Eigen::MatrixXd::Zero(nq, nq);
+  for (int i = 0; i < nq; ++i) {
+    sid.damping_ratio(i) = config.reduction.dampingRatio(sid.frequencies_hz(i));
+    sid.De(i, i) = 2.0 * sid.damping_ratio(i) * std::sqrt(red.omega2(i));
+  }
+  clock.done("invariants", Str() << "mass " << sid.mass << " kg");
+
+  // Contact surface and markers.
+  if (config.contact.present) {
+    ContactSurface cs = extractFaceSurface(tensor, region, config.contact.name);
+    sid.surfaces.push_back(std::move(cs));
+  }
+  for (const MarkerConfig& m : config.markers) {
+    Marker mk = evaluateMarker(space, m.name, m.parameters);
+    mk.position -= origin.head(s);
+    sid.markers.push_back(std::move(mk));
+  }
+  clock.done("surface", Str() << sid.surfaces.size() << " contact surface(s), "
+                              << sid.markers.size() << " marker(s)");
+  return sid;
+}
+
+}  // namespace ffriga

@@ -1,0 +1,16 @@
+// Large dense products of the reduction (Psi^T (M Psi), Psi T, Phi_c^T (Ms Phi_d)) through
+// the BLAS routine dgemm, so that an optimised multithreaded BLAS (OpenBLAS, see
+// .ci/install-deps) does the O(n nq^2) work: with nq ~ 1400 elastic coordinates on 140k
+// DOFs each product is ~5e11 flops.
+//
+//   transposeTimes(A, B) = A^T B,   times(A, B) = A B.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace ffriga {
+
+Eigen::MatrixXd transposeTimes(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+Eigen::MatrixXd times(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B);
+
+}  // namespace ffriga

@@ -1,0 +1,294 @@
+#include "preproc/elasticity_assembly.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/error.h"
+#include "common/gauss_legendre.h"
+
+namespace ffriga {
+
+namespace {
+
+const double kTwoPi = 2.0 * std::acos(-1.0);
+
+// Upper-triangular (row <= column) sparsity pattern of a symmetric matrix whose columns are
+// numbered by `index(node, component)` (< 0: absent), from the node adjacency.
+SparseMatrix buildPattern(const std::vector<std::vector<int>>& adjacency, int components, int size,
+                          const std::vector<int>& index) {
+  std::vector<int> outer(1, 0);
+  std::vector<int> inner;
+  const int nodes = static_cast<int>(adjacency.size());
+  for (int b = 0; b < nodes; ++b) {
+    for (int cb = 0; cb < components; ++cb) {
+      const int col = index[b * components + cb];
+      if (col < 0) continue;
+      FFRIGA_ASSERT(col == static_cast<int>(outer.size()) - 1, "column order");
+      for (int a : adjacency[b]) {
+        if (a > b) break;
+        for (int ca = 0; ca < components; ++ca) {
+          const int row = index[a * components + ca];
+          if (row < 0 || row > col) continue;
+          inner.push_back(row);
+        }
+      }
+      outer.push_back(static_cast<int>(inner.size()));
+    }
+  }
+  FFRIGA_CHECK(static_cast<int>(outer.size()) == size + 1,
+               "pattern has " << outer.size() - 1 << " columns, expected " << size);
+  std::vector<double> values(inner.size(), 0.0);
+  return Eigen::Map<const SparseMatrix>(size, size, static_cast<int>(inner.size()), outer.data(),
+                                        inner.data(), values.data());
+}
+
+// Adds v at (row, col), row <= col, of a compressed pattern (thread-safe).
+inline void atomicAdd(SparseMatrix& A, int row, int col, double v) {
+  const int* inner = A.innerIndexPtr();
+  const int begin = A.outerIndexPtr()[col];
+  const int end = A.outerIndexPtr()[col + 1];
+  const int pos = static_cast<int>(std::lower_bound(inner + begin, inner + end, row) - inner);
+  FFRIGA_ASSERT(pos < end && inner[pos] == row, "entry (" << row << ", " << col << ") missing");
+  double& target = A.valuePtr()[pos];
+#pragma omp atomic
+  target += v;
+}
+
+struct ElementWork {
+  PatchBasis basis;
+  std::vector<int> functions;
+  Eigen::MatrixXd Ke, Me;  // (components * nb)^2 and nb^2
+  Eigen::MatrixXd G[3];    // per component: Gauss points x nb, scaled physical derivatives
+  Eigen::MatrixXd N;       // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
+};
+
+}  // namespace
+
+Eigen::MatrixXd symmetricProduct(const SparseMatrix& upper, const Eigen::MatrixXd& x) {
+  return upper.selfadjointView<Eigen::Upper>() * x;
+}
+
+ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
+                                 const ElasticityModel& model) {
+  const int d = space.paramDim();
+  const int s = space.spaceDim();
+  const int ncp = space.numFunctions();
+  const int ne = space.numElements();
+  FFRIGA_CHECK(d == s && (s == 2 || s == 3),
+               "elasticity needs d = s = 2 or 3, found d = " << d << ", s = " << s);
+  FFRIGA_CHECK(!model.axisymmetric || s == 2, "axisymmetric models are 2D");
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const double E = model.youngs_modulus, nu = model.poisson_ratio, rho = model.density;
+  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  const double mu = E / (2.0 * (1.0 + nu));
+
+  // Functions per element (constant on an element) and node adjacency.
+  std::vector<std::vector<int>> elementNodes(ne);
+  {
+    std::vector<std::vector<int>> nodeElements(ncp);
+    PatchBasis basis;
+    for (int e = 0; e < ne; ++e) {
+      const ElementBox box = space.element(e);
+      double xi[3];
+      for (int a = 0; a < d; ++a) xi[a] = 0.5 * (box.lower[a] + box.upper[a]);
+      space.elementBasis(e, xi, 0, basis);
+      for (int k : basis.index) elementNodes[e].push_back(dofs.node(k));
+      std::sort(elementNodes[e].begin(), elementNodes[e].end());
+      elementNodes[e].erase(std::unique(elementNodes[e].begin(), elementNodes[e].end()),
+                            elementNodes[e].end());
+      for (int n : elementNodes[e]) nodeElements[n].push_back(e);
+    }
+    std::vector<std::vector<int>> adjacency(ncp);
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int n = 0; n < ncp; ++n) {
+      auto& adj = adjacency[n];
+      for (int e : nodeElements[n])
+        adj.insert(adj.end(), elementNodes[e].begin(), elementNodes[e].end());
+      std::sort(adj.begin(), adj.end());
+      adj.erase(std::unique(adj.begin(), adj.end()), adj.end());
+    }
+    elementNodes.clear();
+    ElasticSystem sys;
+    std::vector<int> dofIndex(static_cast<std::size_t>(ncp) * s), nodeIndex(ncp);
+    for (int k = 0; k < ncp; ++k) {
+      nodeIndex[k] = dofs.node(k) == k ? k : -1;
+      for (int c = 0; c < s; ++c) dofIndex[k * s + c] = dofs.node(k) == k ? dofs.dof(k, c) : -1;
+    }
+    sys.K = buildPattern(adjacency, s, dofs.numDofs(), dofIndex);
+    // Ms: the same node adjacency with one component; columns of tied points stay empty.
+    {
+      std::vector<int> outer(ncp + 1, 0), inner;
+      for (int b = 0; b < ncp; ++b) {
+        if (nodeIndex[b] >= 0) {
+          for (int a : adjacency[b]) {
+            if (a > b) break;
+            inner.push_back(a);
+          }
+        }
+        outer[b + 1] = static_cast<int>(inner.size());
+      }
+      std::vector<double> values(inner.size(), 0.0);
+      sys.Ms = Eigen::Map<const SparseMatrix>(ncp, ncp, static_cast<int>(inner.size()),
+                                              outer.data(), inner.data(), values.data());
+    }
+    adjacency.clear();
+
+    // Quadrature rules on [-1, 1].
+    std::array<QuadratureRule, 3> rules;
+    int ng = 1;
+    for (int a = 0; a < d; ++a) {
+      FFRIGA_CHECK(model.gauss_points[a] >= 1, "gauss_points[" << a << "] must be >= 1");
+      rules[a] = gaussLegendre(model.gauss_points[a]);
+      ng *= model.gauss_points[a];
+    }
+    int singular = -1;
+#pragma omp parallel
+    {
+      ElementWork w;
+#pragma omp for schedule(dynamic, 16)
+      for (int e = 0; e < ne; ++e) {
+        const ElementBox box = space.element(e);
+        int nb = -1;
+        for (int g = 0; g < ng; ++g) {
+          double xi[3] = {0, 0, 0};
+          double weight = 1.0;
+          int rest = g;
+          for (int a = 0; a < d; ++a) {
+            const int i = rest % model.gauss_points[a];
+            rest /= model.gauss_points[a];
+            const double h = 0.5 * (box.upper[a] - box.lower[a]);
+            xi[a] = box.lower[a] + h * (rules[a].points[i] + 1.0);
+            weight *= h * rules[a].weights[i];
+          }
+          space.elementBasis(e, xi, 1, w.basis);
+          if (nb < 0) {
+            nb = static_cast<int>(w.basis.index.size());
+            w.functions = w.basis.index;
+            for (int c = 0; c < s; ++c) w.G[c].setZero(ng, nb);
+            w.N.setZero(ng, nb);
+          }
+          const Eigen::MatrixXd& R = w.basis.table;  // rows: value, d/dxi_a
+          Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+          if (s == 2) J(2, 2) = 1.0;  // 2D: the 2 x 2 map embedded
+          Eigen::Vector3d x = Eigen::Vector3d::Zero();
+          for (int j = 0; j < nb; ++j) {
+            const int k = w.functions[j];
+            for (int c = 0; c < s; ++c) {
+              x(c) += R(0, j) * P(k, c);
+              for (int a = 0; a < d; ++a) J(c, a) += R(1 + a, j) * P(k, c);
+            }
+          }
+          const double det = J.determinant();
+          if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
+#pragma omp critical
+            singular = e;
+            continue;
+          }
+          const Eigen::Matrix3d Jinv = J.inverse();
+          double dV = std::abs(det) * weight;
+          if (model.axisymmetric) dV *= kTwoPi * x(0);
+          const double sq = std::sqrt(dV);
+          // Physical gradients: grad R = J^{-T} dR/dxi.
+          for (int c = 0; c < s; ++c) {
+            for (int j = 0; j < nb; ++j) {
+              double v = 0.0;
+              for (int a = 0; a < d; ++a) v += Jinv(a, c) * R(1 + a, j);
+              w.G[c](g, j) = sq * v;
+            }
+          }
+          w.N.row(g) = std::sqrt(rho * dV) * R.row(0);
+          if (model.axisymmetric) {
+            // Hoop strain u_r / r: stored as a third "derivative" row block below.
+            if (g == 0) w.G[2].setZero(ng, nb);
+            w.G[2].row(g) = (sq / x(0)) * R.row(0);
+          }
+        }
+        if (nb < 0) continue;
+        // Element matrices, local ordering (function j, component c) -> j * s + c.
+        w.Ke.setZero(s * nb, s * nb);
+        if (!model.axisymmetric) {
+          Eigen::MatrixXd H[3][3];
+          for (int i = 0; i < 3; ++i)
+            for (int j = i; j < 3; ++j) H[i][j].noalias() = w.G[i].transpose() * w.G[j];
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < i; ++j) H[i][j] = H[j][i].transpose();
+          const Eigen::MatrixXd L = H[0][0] + H[1][1] + H[2][2];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+              Eigen::MatrixXd block = lambda * H[i][j] + mu * H[j][i];
+              if (i == j) block += mu * L;
+              for (int a = 0; a < nb; ++a)
+                for (int b = 0; b < nb; ++b) w.Ke(a * 3 + i, b * 3 + j) = block(a, b);
+            }
+          }
+        } else {
+          // Strain rows for u_r (c = 0) and u_y (c = 1) of function a:
+          //   e_rr = d_r R u_r, e_yy = d_y R u_y, e_tt = R / r u_r, g_ry = d_y R u_r + d_r R u_y.
+          const Eigen::MatrixXd& Gr = w.G[0];
+          const Eigen::MatrixXd& Gy = w.G[1];
+          const Eigen::MatrixXd& Gt = w.G[2];
+          const Eigen::MatrixXd rr = Gr.transpose() * Gr, yy = Gy.transpose() * Gy,
+                                tt = Gt.transpose() * Gt, ry = Gr.transpose() * Gy,
+                                rt = Gr.transpose() * Gt, yt = Gy.transpose() * Gt;
+          const double l2m = lambda + 2.0 * mu;
+          for (int a = 0; a < nb; ++a) {
+            for (int b = 0; b < nb; ++b) {
+              // (u_r, u_r): e_rr e_rr, e_tt e_tt, e_rr e_tt cross terms, shear g_ry g_ry.
+              w.Ke(2 * a, 2 * b) =
+                  l2m * (rr(a, b) + tt(a, b)) + lambda * (rt(a, b) + rt(b, a)) + mu * yy(a, b);
+              // (u_r of a, u_y of b)
+              w.Ke(2 * a, 2 * b + 1) = lambda * (ry(a, b) + yt(b, a)) + mu * ry(b, a);
+              w.Ke(2 * a + 1, 2 * b) = lambda * (ry(b, a) + yt(a, b)) + mu * ry(a, b);
+              w.Ke(2 * a + 1, 2 * b + 1) = l2m * yy(a, b) + mu * rr(a, b);
+            }
+          }
+        }
+        w.Me.noalias() = w.N.transpose() * w.N;
+        // Scatter into the upper triangles.
+        for (int b = 0; b < nb; ++b) {
+          const int kb = w.functions[b];
+          const int nbd = dofs.node(kb);
+          for (int a = 0; a < nb; ++a) {
+            const int ka = w.functions[a];
+            const int nad = dofs.node(ka);
+            if (nad <= nbd) atomicAdd(sys.Ms, nad, nbd, w.Me(a, b));
+            for (int cb = 0; cb < s; ++cb) {
+              const int col = dofs.dof(kb, cb);
+              if (col < 0) continue;
+              for (int ca = 0; ca < s; ++ca) {
+                const int row = dofs.dof(ka, ca);
+                if (row < 0 || row > col) continue;
+                atomicAdd(sys.K, row, col, w.Ke(a * s + ca, b * s + cb));
+              }
+            }
+          }
+        }
+      }
+    }
+    if (singular >= 0) {
+      throw ComputeError(Str() << "the geometry map is singular (det J = 0) at a Gauss point of "
+                               << "element " << singular
+                               << "; the patch is degenerate inside an element");
+    }
+    // M(dof(a, c), dof(b, c)) = Ms(a, b): same pattern as K, filled from Ms.
+    sys.M = sys.K;
+    sys.M.coeffs().setZero();
+    for (int b = 0; b < ncp; ++b) {
+      for (SparseMatrix::InnerIterator it(sys.Ms, b); it; ++it) {
+        const int a = static_cast<int>(it.row());
+        for (int c = 0; c < s; ++c) {
+          const int row = dofs.dof(a, c), col = dofs.dof(b, c);
+          if (row < 0 || col < 0) continue;
+          atomicAdd(sys.M, std::min(row, col), std::max(row, col), it.value());
+        }
+      }
+    }
+    // Drop the couplings between different components (zero in M).
+    sys.M.prune([](int, int, double v) { return v != 0.0; });
+    sys.M.makeCompressed();
+    return sys;
+  }
+}
+
+}  // namespace ffriga

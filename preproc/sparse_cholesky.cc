@@ -1,0 +1,142 @@
+#include "preproc/sparse_cholesky.h"
+
+#include <cstring>
+
+#include <cholmod.h>
+
+#include "common/error.h"
+
+namespace ffriga {
+
+namespace {
+
+// A cholmod_sparse view of an Eigen matrix (no copy; CHOLMOD does not modify it).
+cholmod_sparse view(const SparseMatrix& A) {
+  cholmod_sparse s;
+  std::memset(&s, 0, sizeof(s));
+  s.nrow = static_cast<std::size_t>(A.rows());
+  s.ncol = static_cast<std::size_t>(A.cols());
+  s.nzmax = static_cast<std::size_t>(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = 1;  // upper triangle holds the matrix
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+cholmod_dense denseView(const double* x, int rows, int cols) {
+  cholmod_dense d;
+  std::memset(&d, 0, sizeof(d));
+  d.nrow = static_cast<std::size_t>(rows);
+  d.ncol = static_cast<std::size_t>(cols);
+  d.nzmax = d.nrow * d.ncol;
+  d.d = d.nrow;
+  d.x = const_cast<double*>(x);
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+
+// Errors reported by CHOLMOD's handler go here (one common object per wrapper).
+thread_local std::string lastCholmodError;
+
+void errorHandler(int status, const char* file, int line, const char* message) {
+  lastCholmodError = Str() << "CHOLMOD status " << status << " (" << (message ? message : "")
+                           << ") at " << (file ? file : "?") << ":" << line;
+}
+
+SparseCholesky::Status translate(int status, std::string* message, const char* stage) {
+  if (status == CHOLMOD_OK) return SparseCholesky::Status::kOk;
+  if (message) *message = Str() << stage << ": " << lastCholmodError;
+  if (status == CHOLMOD_OUT_OF_MEMORY) return SparseCholesky::Status::kOutOfMemory;
+  return SparseCholesky::Status::kFailed;
+}
+
+}  // namespace
+
+SparseCholesky::SparseCholesky() {
+  common_ = new cholmod_common;
+  cholmod_start(common_);
+  common_->print = 0;  // silence
+  common_->error_handler = errorHandler;
+  common_->final_ll = 1;
+}
+
+SparseCholesky::~SparseCholesky() {
+  if (factor_) cholmod_free_factor(&factor_, common_);
+  cholmod_finish(common_);
+  delete common_;
+}
+
+SparseCholesky::Status SparseCholesky::analyze(const SparseMatrix& upper, std::string* message) {
+  if (factor_ && n_ == upper.rows()) return Status::kOk;
+  if (factor_) cholmod_free_factor(&factor_, common_);
+  FFRIGA_CHECK(upper.rows() == upper.cols() && upper.isCompressed(),
+               "matrix " << upper.rows() << "x" << upper.cols());
+  cholmod_sparse A = view(upper);
+  lastCholmodError.clear();
+  factor_ = cholmod_analyze(&A, common_);
+  n_ = static_cast<int>(upper.rows());
+  factorized_ = false;
+  if (!factor_) {
+    if (message) *message = "symbolic analysis failed: " + lastCholmodError;
+    return common_->status == CHOLMOD_OUT_OF_MEMORY ? Status::kOutOfMemory : Status::kFailed;
+  }
+  return translate(common_->status, message, "symbolic analysis");
+}
+
+SparseCholesky::Status SparseCholesky::factorize(const SparseMatrix& upper, std::string* message) {
+  const Status a = analyze(upper, message);
+  if (a != Status::kOk) return a;
+  cholmod_sparse A = view(upper);
+  lastCholmodError.clear();
+  const int ok = cholmod_factorize(&A, factor_, common_);
+  factorized_ = false;
+  if (common_->status == CHOLMOD_NOT_POSDEF) {
+    if (message) {
+      *message = Str() << "the matrix is not positive definite (the factorisation breaks down "
+                       << "at column " << factor_->minor << " of " << n_ << ")";
+    }
+    return Status::kNotPositiveDefinite;
+  }
+  if (!ok || common_->status != CHOLMOD_OK)
+    return translate(common_->status, message, "factorisation");
+  factorized_ = true;
+  return Status::kOk;
+}
+
+double SparseCholesky::rcond() const {
+  return factorized_ ? cholmod_rcond(factor_, common_) : 0.0;
+}
+
+void SparseCholesky::solve(const double* b, double* x) const {
+  FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
+  cholmod_dense B = denseView(b, n_, 1);
+  cholmod_dense* X = cholmod_solve(CHOLMOD_A, factor_, &B, common_);
+  if (!X) throw ComputeError("CHOLMOD solve failed: " + lastCholmodError);
+  std::memcpy(x, X->x, sizeof(double) * n_);
+  cholmod_free_dense(&X, common_);
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
+  FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  constexpr int kBlock = 64;  // columns per CHOLMOD call: bounds CHOLMOD's workspace
+  for (Eigen::Index j = 0; j < B.cols(); j += kBlock) {
+    const int nc = static_cast<int>(std::min<Eigen::Index>(kBlock, B.cols() - j));
+    cholmod_dense Bv = denseView(B.data() + j * B.rows(), n_, nc);
+    cholmod_dense* Xc = cholmod_solve(CHOLMOD_A, factor_, &Bv, common_);
+    if (!Xc) throw ComputeError("CHOLMOD solve failed: " + lastCholmodError);
+    std::memcpy(X.data() + j * B.rows(), Xc->x, sizeof(double) * n_ * nc);
+    cholmod_free_dense(&Xc, common_);
+  }
+  return X;
+}
+
+}  // namespace ffriga
