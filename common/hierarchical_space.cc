@@ -77,7 +77,7 @@ BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& o) {
           return {b, a,
                   Str() << "bound " << *x << " is not a knot line of level " << l - 1
                         << " (boxes of level " << l << " must be unions of level-" << l - 1
-                        << " cells); nearest knot lines: " << below << " and " << above};
+                        << " cells), nearest knot lines: " << below << " and " << above};
         }
         *x = nearest;
       }
@@ -106,11 +106,30 @@ BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& o) {
                 Str() << "the box of level " << l << " is too narrow: no degree-" << p
                       << " B-spline of level " << l << " has its support inside ["
                       << o.boxes[b].lower[a] << ", " << o.boxes[b].upper[a]
-                      << "] (more levels than the knot spans allow; widen the box)"};
+                      << "] (more levels than the knot spans allow: widen the box)"};
       }
     }
   }
   return {};
+}
+
+NurbsPatch globalReferencePatch(const NurbsPatch& patch, const HierarchyOptions& o) {
+  const auto knots = levelKnotVectors(patch, o.levels);
+  NurbsPatch out = patch;
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    std::vector<double> X;
+    for (int l = 1; l < o.levels; ++l) {
+      const KnotVector& U = knots[l - 1][a];
+      for (int s : U.elementSpans()) {
+        if (U[s] >= o.boxes[l - 1].lower[a] && U[s + 1] <= o.boxes[l - 1].upper[a]) {
+          // The level-l knot line inside span s, computed as uniformInsertionKnots() does.
+          X.push_back(U[s] + (U[s + 1] - U[s]) / 2);
+        }
+      }
+    }
+    if (!X.empty()) out = insertKnots(out, a, X);
+  }
+  return out;
 }
 
 int HierarchicalSpace::LevelIndex::at(const std::array<int, 3>& i) const {

@@ -84,6 +84,12 @@ std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, i
 // Returns the first problem found.
 BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& options);
 
+// The globally refined reference of a hierarchy (paper Sect. 5): the patch with every knot
+// line of every level l >= 1 inside its box inserted across the whole domain, so that its
+// knot vectors equal the finest level's inside the finest box. `options` must have passed
+// validateBoxes().
+NurbsPatch globalReferencePatch(const NurbsPatch& patch, const HierarchyOptions& options);
+
 class HierarchicalSpace : public SplineSpace {
  public:
   // Throws std::invalid_argument with the reason if validateBoxes() finds a problem.

@@ -81,6 +81,65 @@ std::vector<int> perDirection(const YamlDocument& doc, const YAML::Node& node,
   return v;
 }
 
+void parseInsert(const YamlDocument& doc, const YAML::Node& node, int d, BodyConfig& c) {
+  c.insert.assign(d, {});
+  if (!node || node.IsNull()) return;
+  if (static_cast<int>(node.size()) != d) {
+    throw inputError(doc, node, "refinement.insert",
+                     Str() << "expected one knot list per parametric direction (" << d
+                           << "), found " << node.size());
+  }
+  for (int a = 0; a < d; ++a) {
+    for (std::size_t i = 0; i < node[a].size(); ++i) {
+      c.insert[a].push_back(getDouble(doc, node[a][i], Str() << "refinement.insert[" << a << "]"));
+    }
+  }
+}
+
+// Reads hierarchy.* and checks the boxes against the level grids of the refined patch.
+void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPatch& patch,
+                    BodyConfig& c) {
+  if (!h) return;
+  const int d = patch.paramDim();
+  c.hierarchy.levels = getInt(doc, h["levels"], "hierarchy.levels");
+  if (h["truncated"]) c.hierarchy.truncated = h["truncated"].as<bool>();
+  if (h["as_global_reference"]) c.global_reference = h["as_global_reference"].as<bool>();
+  const YAML::Node boxes = h["boxes"];
+  const int nb = boxes ? static_cast<int>(boxes.size()) : 0;
+  if (nb != c.hierarchy.levels - 1) {
+    throw inputError(doc, boxes ? boxes : h["levels"],
+                     boxes ? "hierarchy.boxes" : "hierarchy.levels",
+                     Str() << "expected one box per refined level (" << c.hierarchy.levels - 1
+                           << " for levels = " << c.hierarchy.levels << "), found " << nb);
+  }
+  for (int b = 0; b < nb; ++b) {
+    const std::string key = Str() << "hierarchy.boxes[" << b << "]";
+    if (static_cast<int>(boxes[b].size()) != d) {
+      throw inputError(doc, boxes[b], key,
+                       Str() << "expected one [lo, hi] interval per parametric direction (" << d
+                             << "), found " << boxes[b].size());
+    }
+    ParamBox box;
+    for (int a = 0; a < d; ++a) {
+      const std::string k = Str() << key << "[" << a << "]";
+      box.lower[a] = getDouble(doc, boxes[b][a][0], k);
+      box.upper[a] = getDouble(doc, boxes[b][a][1], k);
+    }
+    c.hierarchy.boxes.push_back(box);
+  }
+  const BoxProblem problem = validateBoxes(patch, c.hierarchy);
+  if (!problem.reason.empty()) {
+    const YAML::Node node = problem.box < 0   ? h
+                            : problem.dir < 0 ? boxes[problem.box]
+                                              : boxes[problem.box][problem.dir];
+    std::string key = "hierarchy";
+    if (problem.box >= 0) key = Str() << "hierarchy.boxes[" << problem.box << "]";
+    if (problem.dir >= 0) key = Str() << key << "[" << problem.dir << "]";
+    throw inputError(doc, node, key,
+                     Str() << "box of level " << problem.box + 1 << ": " << problem.reason);
+  }
+}
+
 }  // namespace
 
 BodyConfig parseBodyConfig(YamlDocument doc) {
@@ -146,6 +205,21 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
                              << " exceeds the maximum degree " << kMaxDegree);
     }
   }
+  parseInsert(doc, r ? r["insert"] : YAML::Node(), d, c);
+  NurbsPatch refined;
+  try {
+    refined = refinedPatch(c);
+  } catch (const std::invalid_argument& e) {
+    throw inputError(doc, r["insert"], "refinement.insert", e.what());
+  }
+  parseHierarchy(doc, root["hierarchy"], refined, c);
+  if (!c.hierarchy.truncated && !c.global_reference) {
+    try {
+      HierarchicalSpace(refined, c.hierarchy);  // HB can fail (zero weights): report it now
+    } catch (const std::invalid_argument& e) {
+      throw inputError(doc, root["hierarchy"]["truncated"], "hierarchy.truncated", e.what());
+    }
+  }
   c.source = std::move(doc);
   return c;
 }
@@ -164,7 +238,24 @@ NurbsPatch refinedPatch(const BodyConfig& config) {
       patch = insertKnots(patch, a, uniformInsertionKnots(patch.knots(a), config.insert_knots[a]));
     }
   }
+  for (int a = 0; a < static_cast<int>(config.insert.size()); ++a) {
+    if (!config.insert[a].empty()) {
+      try {
+        patch = insertKnots(patch, a, config.insert[a]);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(Str() << "direction " << a << ": " << e.what());
+      }
+    }
+  }
   return patch;
+}
+
+HierarchicalSpace bodySpace(const BodyConfig& config) {
+  const NurbsPatch patch = refinedPatch(config);
+  if (config.global_reference) {
+    return HierarchicalSpace(globalReferencePatch(patch, config.hierarchy), HierarchyOptions{});
+  }
+  return HierarchicalSpace(patch, config.hierarchy);
 }
 
 }  // namespace ffriga

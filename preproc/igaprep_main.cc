@@ -3,10 +3,15 @@
 //   igaprep BODY.yaml [-q|-v] [--threads N]
 //
 // Reads the body file (schemas/body.schema.json), builds the exact NURBS patch, applies
-// the global refinement (degree elevation, then uniform knot insertion) and prints a
-// summary: degrees, elements and control points per direction, coincident control points.
+// the global refinement (degree elevation, then uniform and explicit knot insertion) and
+// the hierarchical refinement, and prints a summary: degrees, elements and control points
+// per direction, per hierarchy level the elements and active functions, coincident
+// control points and the displacement DOFs:
+//   ndof = s * (active functions - points tied to a coincident one of the same level)
+//          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
 #include <cstdio>
 #include <iostream>
+#include <map>
 
 #include "common/cli.h"
 #include "common/version.h"
@@ -16,9 +21,10 @@ namespace {
 
 constexpr const char* kUsage = R"(usage: igaprep BODY.yaml [options]
 
-Builds the exact NURBS model of a flexible body from its body file and refines it
-globally (degree elevation, then uniform knot insertion); prints degrees, elements and
-control points per parametric direction.
+Builds the exact NURBS model of a flexible body from its body file, refines it
+globally (degree elevation, uniform then explicit knot insertion) and hierarchically
+(section 'hierarchy'); prints degrees, elements and control points per parametric
+direction, elements and active functions per hierarchy level, and the DOFs.
 
 options:
   -q, --quiet        print nothing but errors
@@ -33,6 +39,58 @@ Exit codes: 0 success, 2 bad input or usage, 1 failure while computing.
 
 const char* kDirectionNames[3] = {"xi", "eta", "zeta"};
 
+void printHierarchy(const ffriga::BodyConfig& c, const ffriga::HierarchicalSpace& space) {
+  const int s = space.spaceDim();
+  if (c.global_reference) {
+    std::printf(
+        "  global reference of a %d-level hierarchy: knot lines of every level inserted "
+        "across the domain\n",
+        c.hierarchy.levels);
+  }
+  std::printf("  hierarchy  %d level(s), %s\n", space.numLevels(),
+              space.truncated() ? "truncated (THB)" : "non-truncated (HB)");
+  std::printf("  %-6s %9s %18s  %s\n", "level", "elements", "active functions", "region");
+  for (int l = 0; l < space.numLevels(); ++l) {
+    std::printf("  %-6d %9d %18d  ", l, space.numElementsOnLevel(l), space.numFunctionsOnLevel(l));
+    const ffriga::ParamBox box = space.region(l);
+    for (int a = 0; a < space.paramDim(); ++a)
+      std::printf("%s[%.9g, %.9g]", a ? " x " : "", box.lower[a], box.upper[a]);
+    std::printf("\n");
+  }
+  std::printf("  %-6s %9d %18d\n", "total", space.numElements(), space.numFunctions());
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  // Coincident control points share their DOFs: absolute tolerance relative to the size.
+  // Only control points of the same level are tied: coincidences across levels occur on
+  // regular boundaries (e.g. along the axis, where the section is linear in eta, a level-l
+  // and a level-(l+1) function can share a control point) and are distinct DOFs. Boxes are
+  // expected to keep away from degenerate edges (collapsed edges, axis of the solid, seam).
+  std::vector<std::vector<int>> groups;
+  for (const auto& g : ffriga::coincidentPoints(P, 1e-12 * size)) {
+    std::map<int, std::vector<int>> byLevel;
+    for (int k : g) byLevel[space.functionLevel(k)].push_back(k);
+    for (auto& [level, members] : byLevel)
+      if (members.size() >= 2) groups.push_back(std::move(members));
+  }
+  int tied = 0;
+  for (const auto& g : groups) tied += static_cast<int>(g.size()) - 1;
+  int onAxis = 0;
+  if (c.model == ffriga::BodyModel::kAxisymmetric) {
+    std::vector<char> tiedAway(P.rows(), 0);
+    for (const auto& g : groups)
+      for (std::size_t i = 1; i < g.size(); ++i) tiedAway[g[i]] = 1;
+    for (int k = 0; k < P.rows(); ++k) onAxis += !tiedAway[k] && P(k, 0) <= 1e-12 * size;
+  }
+  const int ndof = s * (space.numFunctions() - tied) - onAxis;
+  std::printf("  coincident control points: %zu groups (%d points tied to another)\n",
+              groups.size(), tied);
+  if (c.model == ffriga::BodyModel::kAxisymmetric) {
+    std::printf("  distinct control points on the axis (u_r = 0): %d\n", onAxis);
+  }
+  std::printf("  displacement DOFs: %d x %d functions = %d before tying; ndof = %d\n", s,
+              space.numFunctions(), s * space.numFunctions(), ndof);
+}
+
 void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
   if (verbosity == 0) return;
   const int d = patch.paramDim();
@@ -46,23 +104,8 @@ void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, 
     std::printf("  %-9s %7d %9d %15d\n", kDirectionNames[a], patch.degree(a),
                 patch.knots(a).numElements(), patch.numBasis(a));
   }
-  std::printf("  %-9s %7s %9d %15d\n", "total", "", patch.numElements(), patch.numControlPoints());
-  // Coincident control points: absolute tolerance relative to the patch size.
-  const double size =
-      (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff()).maxCoeff();
-  const auto groups = ffriga::coincidentControlPoints(patch, 1e-12 * size);
-  int tied = 0;
-  for (const auto& g : groups) tied += static_cast<int>(g.size()) - 1;
-  std::printf("  coincident control points: %zu groups (%d points tied to another)\n",
-              groups.size(), tied);
-  if (c.model == ffriga::BodyModel::kAxisymmetric) {
-    int onAxis = 0;
-    for (int k = 0; k < patch.numControlPoints(); ++k)
-      onAxis += patch.points()(k, 0) <= 1e-12 * size;
-    std::printf("  control points on the axis (u_r = 0): %d\n", onAxis);
-  }
-  std::printf("  displacement DOFs before tying: %d\n",
-              patch.numControlPoints() * patch.spaceDim());
+  std::printf("  %-9s %7s %9d %15d   (level 0)\n", "total", "", patch.numElements(),
+              patch.numControlPoints());
   if (verbosity >= 2) {
     for (int a = 0; a < d; ++a) {
       std::printf("  knots %s:", kDirectionNames[a]);
@@ -96,6 +139,8 @@ int main(int argc, char** argv) {
     const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0]);
     const ffriga::NurbsPatch patch = ffriga::refinedPatch(config);
     printSummary(config, patch, o.verbosity);
+    const ffriga::HierarchicalSpace space = ffriga::bodySpace(config);
+    if (o.verbosity > 0) printHierarchy(config, space);
     return 0;
   });
 }
