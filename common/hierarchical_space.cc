@@ -174,6 +174,7 @@ HierarchicalSpace::HierarchicalSpace(const NurbsPatch& patch, HierarchyOptions o
       }
     }
   }
+  identity_ = Eigen::MatrixXd::Identity(nloc_, nloc_);
   buildFunctions();
   buildElements();
   buildGeometry();
@@ -326,7 +327,7 @@ void HierarchicalSpace::buildElements() {
                          ++r;
                        });
         }
-        E = E * MT;
+        E = E.lazyProduct(MT).eval();  // small: no (OpenMP-parallel) GEMM
       }
       int r = 0;
       forEachIndex({0, 0, 0}, {p_[0] + 1, d_ > 1 ? p_[1] + 1 : 1, d_ > 2 ? p_[2] + 1 : 1},
@@ -349,9 +350,13 @@ void HierarchicalSpace::buildElements() {
       el.functions.push_back(rows[k].first);
       el.extraction.row(k) = rows[k].second.transpose();
     }
-    el.extractionT = el.extraction.transpose();
     el.identity = static_cast<int>(rows.size()) == nloc_ &&
                   el.extraction == Eigen::MatrixXd::Identity(nloc_, nloc_);
+    if (el.identity) {
+      el.extraction.resize(0, 0);  // elementExtraction() returns identity_ (saves memory)
+    } else {
+      el.extractionT = el.extraction.transpose();
+    }
   }
 }
 
@@ -456,7 +461,7 @@ void HierarchicalSpace::elementBsplineBasis(int e, const double* xi, int order,
     thread_local Eigen::MatrixXd table;
     tensorBasis(knots_[el.level], el.spans.data(), xi, order, table);
     out.table.resize(table.rows(), el.extractionT.cols());
-    out.table.noalias() = table * el.extractionT;
+    out.table.noalias() = table.lazyProduct(el.extractionT);  // small: no GEMM
   }
   out.index = el.functions;
 }
@@ -484,8 +489,9 @@ std::vector<int> HierarchicalSpace::faceFunctions(int dir, int side) const {
     const int jl = side == 0 ? 0 : p;  // the local function that is 1 on the face
     for (int c = 0; c < nloc_; ++c) {
       if ((c / stride) % (p + 1) != jl) continue;
-      for (int r = 0; r < el.extraction.rows(); ++r) {
-        if (el.extraction(r, c) != 0.0) on[el.functions[r]] = 1;
+      const Eigen::MatrixXd& C = el.identity ? identity_ : el.extraction;
+      for (int r = 0; r < C.rows(); ++r) {
+        if (C(r, c) != 0.0) on[el.functions[r]] = 1;
       }
     }
   }

@@ -126,7 +126,9 @@ class HierarchicalSpace : public SplineSpace {
   int elementLevel(int e) const { return elements_[e].level; }
   const std::array<int, 3>& elementSpans(int e) const { return elements_[e].spans; }
   const std::vector<int>& elementFunctions(int e) const { return elements_[e].functions; }
-  const Eigen::MatrixXd& elementExtraction(int e) const { return elements_[e].extraction; }
+  const Eigen::MatrixXd& elementExtraction(int e) const {
+    return elements_[e].identity ? identity_ : elements_[e].extraction;
+  }
 
   // Active functions that do not vanish on the face xi_dir = front (side 0) / back (side 1).
   std::vector<int> faceFunctions(int dir, int side) const;
@@ -171,6 +173,7 @@ class HierarchicalSpace : public SplineSpace {
   std::vector<std::array<std::vector<int>, 3>> cellSpans_;  // [level][dir]: non-empty spans
   std::vector<int> levelFuncStart_, levelElemStart_;
   std::vector<Element> elements_;
+  Eigen::MatrixXd identity_;  // (p+1)^d identity, the extraction of identity elements
   Eigen::MatrixXd points_;
   Eigen::VectorXd weights_;
 };
