@@ -178,6 +178,16 @@ HierarchicalSpace::HierarchicalSpace(const NurbsPatch& patch, HierarchyOptions o
   buildFunctions();
   buildElements();
   buildGeometry();
+  // Weights folded into the extraction for elementBasis(): w_k C_e(k, j).
+  for (Element& el : elements_) {
+    Eigen::VectorXd w(el.functions.size());
+    for (int k = 0; k < w.size(); ++k) w(k) = weights_(el.functions[k]);
+    if (el.identity) {
+      el.weightedT = w;  // K x 1: the weights of the local functions
+    } else {
+      el.weightedT = (w.asDiagonal() * el.extraction).transpose();
+    }
+  }
 }
 
 bool HierarchicalSpace::supportInRegion(int level, int region, const std::array<int, 3>& i) const {
@@ -352,11 +362,7 @@ void HierarchicalSpace::buildElements() {
     }
     el.identity = static_cast<int>(rows.size()) == nloc_ &&
                   el.extraction == Eigen::MatrixXd::Identity(nloc_, nloc_);
-    if (el.identity) {
-      el.extraction.resize(0, 0);  // elementExtraction() returns identity_ (saves memory)
-    } else {
-      el.extractionT = el.extraction.transpose();
-    }
+    if (el.identity) el.extraction.resize(0, 0);  // elementExtraction() returns identity_
   }
 }
 
@@ -458,22 +464,48 @@ void HierarchicalSpace::elementBsplineBasis(int e, const double* xi, int order,
   if (el.identity) {
     tensorBasis(knots_[el.level], el.spans.data(), xi, order, out.table);
   } else {
-    thread_local Eigen::MatrixXd table;
+    Eigen::MatrixXd table;
     tensorBasis(knots_[el.level], el.spans.data(), xi, order, table);
-    out.table.resize(table.rows(), el.extractionT.cols());
-    out.table.noalias() = table.lazyProduct(el.extractionT);  // small: no GEMM
+    out.table = table.lazyProduct(el.extraction.transpose());
   }
   out.index = el.functions;
 }
 
 void HierarchicalSpace::elementBasis(int e, const double* xi, int order, PatchBasis& out) const {
-  thread_local PatchBasis poly;
-  thread_local Eigen::VectorXd w;
-  elementBsplineBasis(e, xi, order, poly);
-  w.resize(poly.index.size());
-  for (int c = 0; c < w.size(); ++c) w(c) = weights_(poly.index[c]);
-  rationalize(poly.table, w, d_, order, out.table);
-  out.index = poly.index;
+  // Fast path (no heap allocation after the first call): the weighted basis
+  // Bw(r, k) = w_k B_k,r = sum_j b_{j,r} w_k C_e(k, j), then the quotient rule of
+  // rationalize() (rational_basis.h).
+  thread_local Eigen::MatrixXd table, Bw;
+  thread_local Eigen::VectorXd W;
+  const Element& el = elements_[e];
+  tensorBasis(knots_[el.level], el.spans.data(), xi, order, table);
+  const int rows = static_cast<int>(table.rows());
+  const int n = static_cast<int>(el.functions.size());
+  Bw.resize(rows, n);
+  if (el.identity) {
+    Bw.noalias() = table * el.weightedT.col(0).asDiagonal();
+  } else {
+    for (int r = 0; r < rows; ++r) Bw.row(r).noalias() = table.row(r) * el.weightedT;
+  }
+  W = Bw.rowwise().sum();
+  out.table.resize(rows, n);
+  const double invW = 1.0 / W(0);
+  out.table.row(0) = Bw.row(0) * invW;
+  if (order >= 1) {
+    for (int a = 0; a < d_; ++a)
+      out.table.row(1 + a) = (Bw.row(1 + a) - out.table.row(0) * W(1 + a)) * invW;
+  }
+  if (order >= 2) {
+    for (int a = 0; a < d_; ++a) {
+      for (int b = a; b < d_; ++b) {
+        const int ab = secondDerivativeRow(d_, a, b);
+        out.table.row(ab) = (Bw.row(ab) - out.table.row(1 + a) * W(1 + b) -
+                             out.table.row(1 + b) * W(1 + a) - out.table.row(0) * W(ab)) *
+                            invW;
+      }
+    }
+  }
+  out.index = el.functions;
 }
 
 std::vector<int> HierarchicalSpace::faceFunctions(int dir, int side) const {

@@ -103,7 +103,8 @@ class HierarchicalSpace : public SplineSpace {
   int findElement(const double* xi) const override;
   void elementBasis(int e, const double* xi, int order, PatchBasis& out) const override;
 
-  // Polynomial (THB or HB) basis on element e: out.table = tensor table * C_e^T.
+  // Polynomial (THB or HB) basis on element e: out.table = tensor table * C_e^T (a slow
+  // reference path; elementBasis() is the fast one).
   void elementBsplineBasis(int e, const double* xi, int order, PatchBasis& out) const;
 
   int numLevels() const { return nlvl_; }
@@ -138,9 +139,9 @@ class HierarchicalSpace : public SplineSpace {
     int level = 0;
     std::array<int, 3> spans{0, 0, 0};
     std::vector<int> functions;
-    Eigen::MatrixXd extraction;   // n_e x (p+1)^d
-    Eigen::MatrixXd extractionT;  // its transpose, for the product table * C^T
-    bool identity = false;        // C_e is the identity (functions = the level's local ones)
+    Eigen::MatrixXd extraction;  // n_e x (p+1)^d
+    Eigen::MatrixXd weightedT;   // (diag(w) C_e)^T, K x n_e (identity: the K weights)
+    bool identity = false;       // C_e is the identity (functions = the level's local ones)
   };
   struct LevelIndex {  // dense id arrays over the index ranges of the region's box
     std::array<int, 3> lo{0, 0, 0};

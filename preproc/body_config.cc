@@ -1,5 +1,7 @@
 #include "preproc/body_config.h"
 
+#include <map>
+
 #include "common/json_schema.h"
 #include "common/refinement.h"
 #include "common/schemas.h"
@@ -256,6 +258,34 @@ HierarchicalSpace bodySpace(const BodyConfig& config) {
     return HierarchicalSpace(globalReferencePatch(patch, config.hierarchy), HierarchyOptions{});
   }
   return HierarchicalSpace(patch, config.hierarchy);
+}
+
+}  // namespace ffriga
+
+namespace ffriga {
+
+DofCount countDofs(const HierarchicalSpace& space, BodyModel model) {
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  std::vector<std::vector<int>> groups;
+  for (const auto& g : coincidentPoints(P, 1e-12 * size)) {
+    std::map<int, std::vector<int>> byLevel;
+    for (int k : g) byLevel[space.functionLevel(k)].push_back(k);
+    for (auto& entry : byLevel)
+      if (entry.second.size() >= 2) groups.push_back(std::move(entry.second));
+  }
+  DofCount n;
+  n.groups = static_cast<int>(groups.size());
+  std::vector<char> tiedAway(P.rows(), 0);
+  for (const auto& g : groups) {
+    n.tied += static_cast<int>(g.size()) - 1;
+    for (std::size_t i = 1; i < g.size(); ++i) tiedAway[g[i]] = 1;
+  }
+  if (model == BodyModel::kAxisymmetric) {
+    for (int k = 0; k < P.rows(); ++k) n.on_axis += !tiedAway[k] && P(k, 0) <= 1e-12 * size;
+  }
+  n.ndof = space.spaceDim() * (space.numFunctions() - n.tied) - n.on_axis;
+  return n;
 }
 
 }  // namespace ffriga

@@ -52,4 +52,19 @@ NurbsPatch refinedPatch(const BodyConfig& config);
 // hierarchy.as_global_reference, the tensor space (one level) of its global reference.
 HierarchicalSpace bodySpace(const BodyConfig& config);
 
+// Displacement DOFs of a body space (what igaprep reports as ndof):
+//   ndof = s * (functions - tied) - on_axis,
+// tied: control points that coincide (1e-12 of the body size) with another one of the same
+// level and share its DOFs (collapsed edges, poles, seams); coincidences across levels
+// occur on regular boundaries (along the axis, where the section is linear in eta, a
+// level-l and a level-(l+1) function can share a control point) and stay distinct DOFs;
+// on_axis (axisymmetric): distinct control points with x = 0, where u_r = 0.
+struct DofCount {
+  int groups = 0;   // groups of tied control points
+  int tied = 0;     // control points tied to another one
+  int on_axis = 0;  // distinct control points on the axis
+  int ndof = 0;
+};
+DofCount countDofs(const HierarchicalSpace& space, BodyModel model);
+
 }  // namespace ffriga

@@ -11,7 +11,6 @@
 //          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
 #include <cstdio>
 #include <iostream>
-#include <map>
 
 #include "common/cli.h"
 #include "common/version.h"
@@ -58,37 +57,14 @@ void printHierarchy(const ffriga::BodyConfig& c, const ffriga::HierarchicalSpace
     std::printf("\n");
   }
   std::printf("  %-6s %9d %18d\n", "total", space.numElements(), space.numFunctions());
-  const Eigen::MatrixXd& P = space.controlPoints();
-  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
-  // Coincident control points share their DOFs: absolute tolerance relative to the size.
-  // Only control points of the same level are tied: coincidences across levels occur on
-  // regular boundaries (e.g. along the axis, where the section is linear in eta, a level-l
-  // and a level-(l+1) function can share a control point) and are distinct DOFs. Boxes are
-  // expected to keep away from degenerate edges (collapsed edges, axis of the solid, seam).
-  std::vector<std::vector<int>> groups;
-  for (const auto& g : ffriga::coincidentPoints(P, 1e-12 * size)) {
-    std::map<int, std::vector<int>> byLevel;
-    for (int k : g) byLevel[space.functionLevel(k)].push_back(k);
-    for (auto& [level, members] : byLevel)
-      if (members.size() >= 2) groups.push_back(std::move(members));
-  }
-  int tied = 0;
-  for (const auto& g : groups) tied += static_cast<int>(g.size()) - 1;
-  int onAxis = 0;
+  const ffriga::DofCount n = ffriga::countDofs(space, c.model);
+  std::printf("  coincident control points: %d groups (%d points tied to another)\n", n.groups,
+              n.tied);
   if (c.model == ffriga::BodyModel::kAxisymmetric) {
-    std::vector<char> tiedAway(P.rows(), 0);
-    for (const auto& g : groups)
-      for (std::size_t i = 1; i < g.size(); ++i) tiedAway[g[i]] = 1;
-    for (int k = 0; k < P.rows(); ++k) onAxis += !tiedAway[k] && P(k, 0) <= 1e-12 * size;
-  }
-  const int ndof = s * (space.numFunctions() - tied) - onAxis;
-  std::printf("  coincident control points: %zu groups (%d points tied to another)\n",
-              groups.size(), tied);
-  if (c.model == ffriga::BodyModel::kAxisymmetric) {
-    std::printf("  distinct control points on the axis (u_r = 0): %d\n", onAxis);
+    std::printf("  distinct control points on the axis (u_r = 0): %d\n", n.on_axis);
   }
   std::printf("  displacement DOFs: %d x %d functions = %d before tying; ndof = %d\n", s,
-              space.numFunctions(), s * space.numFunctions(), ndof);
+              space.numFunctions(), s * space.numFunctions(), n.ndof);
 }
 
 void printSummary(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
