@@ -265,7 +265,16 @@ HierarchicalSpace bodySpace(const BodyConfig& config) {
 namespace ffriga {
 
 DofCount countDofs(const HierarchicalSpace& space, BodyModel model) {
-  const Eigen::MatrixXd& P = space.controlPoints();
+  // Degeneracies are read from the THB control points (refined control points of the
+  // patch): HB control points of one level can coincide without any degeneracy (functions
+  // whose only coarse parent in the region is the same). HB and THB share the active set.
+  Eigen::MatrixXd thb;
+  if (!space.truncated()) {
+    HierarchyOptions o = space.options();
+    o.truncated = true;
+    thb = HierarchicalSpace(space.basePatch(), o).controlPoints();
+  }
+  const Eigen::MatrixXd& P = space.truncated() ? space.controlPoints() : thb;
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
   std::vector<std::vector<int>> groups;
   for (const auto& g : coincidentPoints(P, 1e-12 * size)) {

@@ -55,7 +55,8 @@ HierarchicalSpace bodySpace(const BodyConfig& config);
 // Displacement DOFs of a body space (what igaprep reports as ndof):
 //   ndof = s * (functions - tied) - on_axis,
 // tied: control points that coincide (1e-12 of the body size) with another one of the same
-// level and share its DOFs (collapsed edges, poles, seams); coincidences across levels
+// level and share its DOFs (collapsed edges, poles, seams; judged on the THB control points,
+// also for an HB space); coincidences across levels
 // occur on regular boundaries (along the axis, where the section is linear in eta, a
 // level-l and a level-(l+1) function can share a control point) and stay distinct DOFs;
 // on_axis (axisymmetric): distinct control points with x = 0, where u_r = 0.
