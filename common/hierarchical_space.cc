@@ -45,11 +45,27 @@ std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, i
   return k;
 }
 
+std::string checkLevels(const NurbsPatch& patch, int levels) {
+  if (levels < 1 || levels > kMaxLevels) {
+    return Str() << "expected 1 to " << kMaxLevels << " levels, found " << levels;
+  }
+  // The level knot vectors cover the whole domain: cap their size (2^20 spans per
+  // direction, 8 MB of knots) before building them.
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    const double spans = std::ldexp(patch.knots(a).numElements(), levels - 1);
+    if (spans > 1 << 20) {
+      return Str() << levels << " levels give " << spans << " knot spans along direction " << a
+                   << " on the finest level (at most " << (1 << 20)
+                   << " supported): more levels than the knot spans allow";
+    }
+  }
+  return "";
+}
+
 BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& o) {
   const int d = patch.paramDim();
-  if (o.levels < 1 || o.levels > kMaxLevels) {
-    return {-1, -1, Str() << "expected 1 to " << kMaxLevels << " levels, found " << o.levels};
-  }
+  const std::string levelProblem = checkLevels(patch, o.levels);
+  if (!levelProblem.empty()) return {-1, -1, levelProblem};
   if (static_cast<int>(o.boxes.size()) != o.levels - 1) {
     return {-1, -1,
             Str() << "expected one box per refined level (" << o.levels - 1 << " for " << o.levels

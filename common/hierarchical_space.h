@@ -77,6 +77,10 @@ struct BoxProblem {
 // The knot vectors of levels 0..levels-1 (level l+1 halves every span of level l).
 std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, int levels);
 
+// Empty if `levels` is admissible for the patch: 1 <= levels <= 30 and at most 2^20 knot
+// spans per direction on the finest level; otherwise the reason.
+std::string checkLevels(const NurbsPatch& patch, int levels);
+
 // Checks (and snaps, in place) the boxes of `options` against the level grids of `patch`:
 // count (levels - 1), lo < hi inside the domain, alignment with level l-1 knot lines,
 // nesting, and that every box holds at least one B-spline of its own level in every

@@ -106,6 +106,8 @@ void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPat
   c.hierarchy.levels = getInt(doc, h["levels"], "hierarchy.levels");
   if (h["truncated"]) c.hierarchy.truncated = h["truncated"].as<bool>();
   if (h["as_global_reference"]) c.global_reference = h["as_global_reference"].as<bool>();
+  const std::string levelProblem = checkLevels(patch, c.hierarchy.levels);
+  if (!levelProblem.empty()) throw inputError(doc, h["levels"], "hierarchy.levels", levelProblem);
   const YAML::Node boxes = h["boxes"];
   const int nb = boxes ? static_cast<int>(boxes.size()) : 0;
   if (nb != c.hierarchy.levels - 1) {
@@ -131,11 +133,9 @@ void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPat
   }
   const BoxProblem problem = validateBoxes(patch, c.hierarchy);
   if (!problem.reason.empty()) {
-    const YAML::Node node = problem.box < 0   ? h
-                            : problem.dir < 0 ? boxes[problem.box]
-                                              : boxes[problem.box][problem.dir];
-    std::string key = "hierarchy";
-    if (problem.box >= 0) key = Str() << "hierarchy.boxes[" << problem.box << "]";
+    if (problem.box < 0) throw inputError(doc, h["levels"], "hierarchy.levels", problem.reason);
+    const YAML::Node node = problem.dir < 0 ? boxes[problem.box] : boxes[problem.box][problem.dir];
+    std::string key = Str() << "hierarchy.boxes[" << problem.box << "]";
     if (problem.dir >= 0) key = Str() << key << "[" << problem.dir << "]";
     throw inputError(doc, node, key,
                      Str() << "box of level " << problem.box + 1 << ": " << problem.reason);
