@@ -48,5 +48,22 @@ TEST_CASE("solid sphere: hierarchical models and global references", "[configs]"
   for (int n = 4; n <= 5; ++n) checkPair("sphere3d", n, 0.2);
 }
 
+TEST_CASE("HB and THB bodies count the same DOFs", "[configs]") {
+  BodyConfig c =
+      loadBodyConfig(std::string(FFRIGA_SOURCE_DIR) + "/configs/bodies/sphere2d_h6.yaml");
+  const HierarchicalSpace thb = bodySpace(c);
+  c.hierarchy.truncated = false;
+  const HierarchicalSpace hb = bodySpace(c);
+  REQUIRE(hb.numFunctions() == thb.numFunctions());  // same active set
+  CHECK(countDofs(hb, c.model).ndof == countDofs(thb, c.model).ndof);
+  // Both represent the half-disk exactly (HB with its own coefficients, see the header of
+  // hierarchical_space.h); relative to the radius, round-off of O(10) terms.
+  for (int e = 0; e < hb.numElements(); e += 7) {
+    const ElementBox b = hb.element(e);
+    const double xi[2] = {0.3 * b.lower[0] + 0.7 * b.upper[0], 0.6 * b.lower[1] + 0.4 * b.upper[1]};
+    CHECK((hb.evaluate(xi).x - thb.basePatch().evaluate(xi).x).norm() < 1e-13 * 0.01);
+  }
+}
+
 }  // namespace
 }  // namespace ffriga
