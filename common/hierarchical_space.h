@@ -17,20 +17,24 @@
 //
 // Basis (hierarchical B-splines, HB, paper):
 //   H = union_l { B^l_i : supp B^l_i in Omega^l and supp B^l_i not in Omega^{l+1} }.
-// Truncated (THB, default):  trunc^{l+1} s = sum_{j : supp B^{l+1}_j not in Omega^{l+1}} c_j
-// B^{l+1}_j for s = sum_j c_j B^{l+1}_j, applied level after level to every active B^l_i. THB span
-// the same space as HB and form a partition of unity.
+// Truncated (THB, default): for s = sum_j c_j B^{l+1}_j,
+//   trunc^{l+1} s = sum_{j : supp B^{l+1}_j not in Omega^{l+1}} c_j B^{l+1}_j,
+// applied level after level to every active B^l_i. THB span the same space as HB and form
+// a partition of unity.
 //
 // Elements are the cells of level l inside Omega^l and outside Omega^{l+1}. On an element of
 // level l every active function is a combination of the (p+1)^d level-l tensor B-splines
 // that do not vanish on it:
 //   B_active(xi) = C_e b^l(xi),  C_e: n_e x (p+1)^d   (element extraction operator),
 // built from local blocks of T (and the truncation masks) at construction. Evaluating the
-// basis is tensorBasis() on level l, one small dense product and rationalize().
+// rational basis (elementBasis) is tensorBasis() on level l, one small dense product with
+// the weighted operator diag(w) C_e, and the quotient rule of rationalize(); elements whose
+// operator is the identity skip the product (most elements of the finest level).
 //
 // Geometry (exact rational patch). With the homogeneous coefficients Q^l = [w P, w] of the
 // patch refined to level l (Q^{l+1} = T^{l+1} Q^l):
-//   THB: coefficient of active B^l_i = Q^l_i ("preservation of coefficients", GJS 2012, Thm 9).
+//   THB: coefficient of active B^l_i = Q^l_i (the "preservation of coefficients" property
+//        of THB-splines, GJS 2012).
 //   HB:  g^0 = Q^0; coefficient of active B^l_i = g^l_i;
 //        g^{l+1} = T^{l+1} (g^l restricted to the B^l_j with supp in Omega^{l+1})
 //        (on cells outside Omega^{l+1} the coarser HB functions already reproduce the patch;
