@@ -29,7 +29,7 @@
 // built from local blocks of T (and the truncation masks) at construction. Evaluating the
 // rational basis (elementBasis) is tensorBasis() on level l, one small dense product with
 // the weighted operator diag(w) C_e, and the quotient rule of rationalize(); elements whose
-// operator is the identity skip the product (most elements of the finest level).
+// operator is the identity (only own-level functions, untruncated) skip the product.
 //
 // Geometry (exact rational patch). With the homogeneous coefficients Q^l = [w P, w] of the
 // patch refined to level l (Q^{l+1} = T^{l+1} Q^l):
