@@ -170,9 +170,8 @@ PatchPoint NurbsPatch::evaluate(const double* xi, int order) const {
   return pt;
 }
 
-std::vector<std::vector<int>> coincidentControlPoints(const NurbsPatch& patch, double tol) {
-  const int n = patch.numControlPoints();
-  const Eigen::MatrixXd& P = patch.points();
+std::vector<std::vector<int>> coincidentPoints(const Eigen::MatrixXd& P, double tol) {
+  const int n = static_cast<int>(P.rows());
   // Sort by the first coordinate, then compare neighbours within tol (union-find).
   std::vector<int> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -200,6 +199,10 @@ std::vector<std::vector<int>> coincidentControlPoints(const NurbsPatch& patch, d
   }
   std::sort(result.begin(), result.end());
   return result;
+}
+
+std::vector<std::vector<int>> coincidentControlPoints(const NurbsPatch& patch, double tol) {
+  return coincidentPoints(patch.points(), tol);
 }
 
 }  // namespace ffriga

@@ -82,5 +82,7 @@ void tensorBasis(const std::vector<KnotVector>& knots, const int* spans, const d
 // poles, seams. Each group lists >= 2 indices in increasing order; groups are sorted by
 // their first index. Later stages tie the degrees of freedom of each group.
 std::vector<std::vector<int>> coincidentControlPoints(const NurbsPatch& patch, double tol);
+// The same for any point set (rows of P).
+std::vector<std::vector<int>> coincidentPoints(const Eigen::MatrixXd& P, double tol);
 
 }  // namespace ffriga

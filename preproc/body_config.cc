@@ -1,5 +1,7 @@
 #include "preproc/body_config.h"
 
+#include <map>
+
 #include "common/json_schema.h"
 #include "common/refinement.h"
 #include "common/schemas.h"
@@ -198,6 +200,65 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
   }
 }
 
+void parseInsert(const YamlDocument& doc, const YAML::Node& node, int d, BodyConfig& c) {
+  c.insert.assign(d, {});
+  if (!node || node.IsNull()) return;
+  if (static_cast<int>(node.size()) != d) {
+    throw inputError(doc, node, "refinement.insert",
+                     Str() << "expected one knot list per parametric direction (" << d
+                           << "), found " << node.size());
+  }
+  for (int a = 0; a < d; ++a) {
+    for (std::size_t i = 0; i < node[a].size(); ++i) {
+      c.insert[a].push_back(getDouble(doc, node[a][i], Str() << "refinement.insert[" << a << "]"));
+    }
+  }
+}
+
+// Reads hierarchy.* and checks the boxes against the level grids of the refined patch.
+void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPatch& patch,
+                    BodyConfig& c) {
+  if (!h) return;
+  const int d = patch.paramDim();
+  c.hierarchy.levels = getInt(doc, h["levels"], "hierarchy.levels");
+  if (h["truncated"]) c.hierarchy.truncated = h["truncated"].as<bool>();
+  if (h["as_global_reference"]) c.global_reference = h["as_global_reference"].as<bool>();
+  const std::string levelProblem = checkLevels(patch, c.hierarchy.levels);
+  if (!levelProblem.empty()) throw inputError(doc, h["levels"], "hierarchy.levels", levelProblem);
+  const YAML::Node boxes = h["boxes"];
+  const int nb = boxes ? static_cast<int>(boxes.size()) : 0;
+  if (nb != c.hierarchy.levels - 1) {
+    throw inputError(doc, boxes ? boxes : h["levels"],
+                     boxes ? "hierarchy.boxes" : "hierarchy.levels",
+                     Str() << "expected one box per refined level (" << c.hierarchy.levels - 1
+                           << " for levels = " << c.hierarchy.levels << "), found " << nb);
+  }
+  for (int b = 0; b < nb; ++b) {
+    const std::string key = Str() << "hierarchy.boxes[" << b << "]";
+    if (static_cast<int>(boxes[b].size()) != d) {
+      throw inputError(doc, boxes[b], key,
+                       Str() << "expected one [lo, hi] interval per parametric direction (" << d
+                             << "), found " << boxes[b].size());
+    }
+    ParamBox box;
+    for (int a = 0; a < d; ++a) {
+      const std::string k = Str() << key << "[" << a << "]";
+      box.lower[a] = getDouble(doc, boxes[b][a][0], k);
+      box.upper[a] = getDouble(doc, boxes[b][a][1], k);
+    }
+    c.hierarchy.boxes.push_back(box);
+  }
+  const BoxProblem problem = validateBoxes(patch, c.hierarchy);
+  if (!problem.reason.empty()) {
+    if (problem.box < 0) throw inputError(doc, h["levels"], "hierarchy.levels", problem.reason);
+    const YAML::Node node = problem.dir < 0 ? boxes[problem.box] : boxes[problem.box][problem.dir];
+    std::string key = Str() << "hierarchy.boxes[" << problem.box << "]";
+    if (problem.dir >= 0) key = Str() << key << "[" << problem.dir << "]";
+    throw inputError(doc, node, key,
+                     Str() << "box of level " << problem.box + 1 << ": " << problem.reason);
+  }
+}
+
 }  // namespace
 
 double ReductionConfig::dampingRatio(double f_hz) const {
@@ -271,6 +332,21 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
                              << " exceeds the maximum degree " << kMaxDegree);
     }
   }
+  parseInsert(doc, r ? r["insert"] : YAML::Node(), d, c);
+  NurbsPatch refined;
+  try {
+    refined = refinedPatch(c);
+  } catch (const std::invalid_argument& e) {
+    throw inputError(doc, r["insert"], "refinement.insert", e.what());
+  }
+  parseHierarchy(doc, root["hierarchy"], refined, c);
+  if (!c.hierarchy.truncated && !c.global_reference) {
+    try {
+      HierarchicalSpace(refined, c.hierarchy);  // HB can fail (zero weights): report it now
+    } catch (const std::invalid_argument& e) {
+      throw inputError(doc, root["hierarchy"]["truncated"], "hierarchy.truncated", e.what());
+    }
+  }
   parseContact(doc, root["contact"], c.geometry, &c.contact);
   parseMarkers(doc, root["markers"], c.geometry, &c.markers);
   parseReduction(doc, root["reduction"], c.contact.present, c.markers, &c.reduction);
@@ -292,7 +368,68 @@ NurbsPatch refinedPatch(const BodyConfig& config) {
       patch = insertKnots(patch, a, uniformInsertionKnots(patch.knots(a), config.insert_knots[a]));
     }
   }
+  for (int a = 0; a < static_cast<int>(config.insert.size()); ++a) {
+    if (!config.insert[a].empty()) {
+      try {
+        patch = insertKnots(patch, a, config.insert[a]);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(Str() << "direction " << a << ": " << e.what());
+      }
+    }
+  }
   return patch;
+}
+
+HierarchicalSpace bodySpace(const BodyConfig& config) {
+  const NurbsPatch patch = refinedPatch(config);
+  if (config.global_reference) {
+    return HierarchicalSpace(globalReferencePatch(patch, config.hierarchy), HierarchyOptions{});
+  }
+  return HierarchicalSpace(patch, config.hierarchy);
+}
+
+}  // namespace ffriga
+
+namespace ffriga {
+
+std::vector<std::vector<int>> tiedControlPoints(const HierarchicalSpace& space) {
+  // Degeneracies are read from the THB control points (refined control points of the
+  // patch): HB control points of one level can coincide without any degeneracy (functions
+  // whose only coarse parent in the region is the same). HB and THB share the active set.
+  Eigen::MatrixXd thb;
+  if (!space.truncated()) {
+    HierarchyOptions o = space.options();
+    o.truncated = true;
+    thb = HierarchicalSpace(space.basePatch(), o).controlPoints();
+  }
+  const Eigen::MatrixXd& P = space.truncated() ? space.controlPoints() : thb;
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  std::vector<std::vector<int>> groups;
+  for (const auto& g : coincidentPoints(P, 1e-12 * size)) {
+    std::map<int, std::vector<int>> byLevel;
+    for (int k : g) byLevel[space.functionLevel(k)].push_back(k);
+    for (auto& entry : byLevel)
+      if (entry.second.size() >= 2) groups.push_back(std::move(entry.second));
+  }
+  return groups;
+}
+
+DofCount countDofs(const HierarchicalSpace& space, BodyModel model) {
+  const std::vector<std::vector<int>> groups = tiedControlPoints(space);
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  DofCount n;
+  n.groups = static_cast<int>(groups.size());
+  std::vector<char> tiedAway(P.rows(), 0);
+  for (const auto& g : groups) {
+    n.tied += static_cast<int>(g.size()) - 1;
+    for (std::size_t i = 1; i < g.size(); ++i) tiedAway[g[i]] = 1;
+  }
+  if (model == BodyModel::kAxisymmetric) {
+    for (int k = 0; k < P.rows(); ++k) n.on_axis += !tiedAway[k] && P(k, 0) <= 1e-12 * size;
+  }
+  n.ndof = space.spaceDim() * (space.numFunctions() - n.tied) - n.on_axis;
+  return n;
 }
 
 }  // namespace ffriga

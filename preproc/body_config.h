@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/hierarchical_space.h"
 #include "common/nurbs_patch.h"
 #include "common/yaml_input.h"
 
@@ -59,10 +60,15 @@ struct BodyConfig {
   std::string name;
   BodyModel model = BodyModel::kSolid;
   Material material;
-  std::string geometry_type;        // half_disk | sphere | rod | nurbs
-  NurbsPatch geometry;              // the exact, unrefined patch
-  std::vector<int> elevate_degree;  // per parametric direction
-  std::vector<int> insert_knots;    // per direction: knots per non-empty span
+  std::string geometry_type;                // half_disk | sphere | rod | nurbs
+  NurbsPatch geometry;                      // the exact, unrefined patch
+  std::vector<int> elevate_degree;          // per parametric direction
+  std::vector<int> insert_knots;            // per direction: knots per non-empty span
+  std::vector<std::vector<double>> insert;  // per direction: explicit knots (after the above)
+  // Hierarchical refinement of the globally refined patch (levels = 1: none). The boxes are
+  // validated and snapped onto the level grids (HierarchicalSpace's box semantics).
+  HierarchyOptions hierarchy;
+  bool global_reference = false;  // hierarchy.as_global_reference
   ContactConfig contact;
   std::vector<MarkerConfig> markers;
   ReductionConfig reduction;
@@ -74,7 +80,31 @@ struct BodyConfig {
 BodyConfig loadBodyConfig(const std::string& path);
 BodyConfig parseBodyConfig(YamlDocument doc);
 
-// The globally refined patch: degree elevation, then uniform knot insertion, per direction.
+// The globally refined patch: degree elevation, then uniform knot insertion, then the
+// explicit knots, per direction. Hierarchy boxes refer to this patch's knot coordinates.
 NurbsPatch refinedPatch(const BodyConfig& config);
+
+// The body's spline space: the hierarchical space over refinedPatch() or, with
+// hierarchy.as_global_reference, the tensor space (one level) of its global reference.
+HierarchicalSpace bodySpace(const BodyConfig& config);
+
+// Displacement DOFs of a body space (what igaprep reports as ndof):
+//   ndof = s * (functions - tied) - on_axis,
+// tied: control points that coincide (1e-12 of the body size) with another one of the same
+// level and share its DOFs (collapsed edges, poles, seams; judged on the THB control points,
+// also for an HB space); coincidences across levels
+// occur on regular boundaries (along the axis, where the section is linear in eta, a
+// level-l and a level-(l+1) function can share a control point) and stay distinct DOFs;
+// on_axis (axisymmetric): distinct control points with x = 0, where u_r = 0.
+struct DofCount {
+  int groups = 0;   // groups of tied control points
+  int tied = 0;     // control points tied to another one
+  int on_axis = 0;  // distinct control points on the axis
+  int ndof = 0;
+};
+DofCount countDofs(const HierarchicalSpace& space, BodyModel model);
+// Groups of control points whose DOFs are tied: coincident points of the same level
+// (collapsed edges, poles, seams), read from the THB control points.
+std::vector<std::vector<int>> tiedControlPoints(const HierarchicalSpace& space);
 
 }  // namespace ffriga

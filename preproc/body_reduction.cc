@@ -6,7 +6,7 @@
 
 #include "common/error.h"
 #include "common/version.h"
-#include "preproc/bezier_face_extraction.h"
+#include "common/contact_surface.h"
 #include "preproc/contact_region.h"
 #include "preproc/craig_bampton.h"
 #include "preproc/dof_map.h"
@@ -60,18 +60,17 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   sid.reduction = config.reduction.method;
   sid.frame = config.reduction.frame;
 
-  // Geometry. Everything below works on the abstract SplineSpace (a hierarchical space can
-  // take the tensor space's place); the quadrature degrees come from the refined patch, and
-  // the contact surface is Bezier-extracted from the tensor patch.
+  // Geometry: the (hierarchically) refined space; everything below works on the abstract
+  // SplineSpace. The quadrature degrees come from the refined patch (all levels share them).
   const NurbsPatch patch = refinedPatch(config);
-  const TensorSpace tensor(patch);
-  const SplineSpace& space = tensor;
+  const HierarchicalSpace hspace = bodySpace(config);
+  const SplineSpace& space = hspace;
   const int s = space.spaceDim();
   const int d = space.paramDim();
   sid.space_dim = s;
-  sid.nlvl = 1;
+  sid.nlvl = config.global_reference ? 1 : hspace.numLevels();
   sid.n_elements = space.numElements();
-  const DofMap dofs(space, axi);
+  const DofMap dofs(space, axi, tiedControlPoints(hspace));
   sid.ndof = dofs.numDofs();
   summary->ndof = dofs.numDofs();
   summary->num_control_points = space.numFunctions();
@@ -191,7 +190,18 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
 
   // Contact surface and markers.
   if (config.contact.present) {
-    ContactSurface cs = extractFaceSurface(tensor, region, config.contact.name);
+    ParamBox box;
+    for (std::size_t a = 0; a < region.bounds.size(); ++a) {
+      box.lower[a] = region.bounds[a][0];
+      box.upper[a] = region.bounds[a][1];
+    }
+    ContactSurface cs;
+    try {
+      cs = extractContactSurface(hspace, region.direction, region.upper ? 1 : 0, box,
+                                 config.contact.name);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(Str() << config.source.path << ": contact surface: " << e.what());
+    }
     sid.surfaces.push_back(std::move(cs));
   }
   for (const MarkerConfig& m : config.markers) {

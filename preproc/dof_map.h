@@ -22,6 +22,12 @@ class DofMap {
   // tolerance: absolute distance (m) below which control points coincide; a negative
   // value means 1e-12 times the size of the control net.
   DofMap(const SplineSpace& space, bool axisymmetric, double tolerance = -1.0);
+  // With the groups of tied control points given (each group moves as one point; e.g.
+  // tiedControlPoints() of body_config.h for hierarchical spaces, which ties only points of
+  // the same level).
+  DofMap(const SplineSpace& space, bool axisymmetric, const std::vector<std::vector<int>>& tied,
+         double tolerance = -1.0);
+  static double defaultTolerance(const SplineSpace& space);
 
   int numControlPoints() const { return static_cast<int>(node_.size()); }
   int components() const { return components_; }
@@ -48,7 +54,5 @@ class DofMap {
   std::vector<int> dof_;
 };
 
-// Groups (>= 2 indices, increasing) of rows of P that coincide within tol (max-norm, m).
-std::vector<std::vector<int>> coincidentPoints(const Eigen::MatrixXd& P, double tol);
 
 }  // namespace ffriga

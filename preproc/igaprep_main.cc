@@ -10,6 +10,13 @@
 #include <sys/resource.h>
 
 #include <chrono>
+// Reads the body file (schemas/body.schema.json), builds the exact NURBS patch, applies
+// the global refinement (degree elevation, then uniform and explicit knot insertion) and
+// the hierarchical refinement, and prints a summary: degrees, elements and control points
+// per direction, per hierarchy level the elements and active functions, coincident
+// control points and the displacement DOFs:
+//   ndof = s * (active functions - points tied to a coincident one of the same level)
+//          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
 #include <cstdio>
 #include <iostream>
 
@@ -25,11 +32,10 @@ constexpr const char* kUsage = R"(usage: igaprep BODY.yaml -o BODY.sid.h5 [optio
        igaprep BODY.yaml [options]
        igaprep --info FILE.sid.h5
 
-Builds the reduced flexible body of a body file: exact NURBS geometry, global refinement
-(degree elevation, then uniform knot insertion), linear elastic assembly, Craig-Bampton or
-modal reduction in a Buckens or tangent floating frame, the SID invariants, the contact
-surface and the markers, written to one HDF5 file (schemas/sid_format.md). Without -o,
-prints the refined geometry only.
+Builds the exact NURBS model of a flexible body from its body file, refines it
+globally (degree elevation, uniform then explicit knot insertion) and hierarchically
+(section 'hierarchy'); prints degrees, elements and control points per parametric
+direction, elements and active functions per hierarchy level, and the DOFs.
 
 options:
   -o, --output FILE  write the SID file (atomically: nothing is left behind on failure)
@@ -167,6 +173,7 @@ int main(int argc, char** argv) {
     const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0]);
     if (o.output.empty()) {
       printGeometry(config, ffriga::refinedPatch(config), o.verbosity);
+      if (o.verbosity > 0) printHierarchy(config, ffriga::bodySpace(config));
       return 0;
     }
     auto log = [&](const std::string& line) {

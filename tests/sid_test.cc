@@ -12,7 +12,6 @@
 #include "common/hdf5_io.h"
 #include "common/refinement.h"
 #include "common/sid_file.h"
-#include "preproc/bezier_face_extraction.h"
 #include "preproc/body_reduction.h"
 #include "preproc/geometry_builders.h"
 #include "preproc/sid_invariants.h"
@@ -226,47 +225,3 @@ TEST_CASE("readSid and writeSid report bad files clearly", "[sid]") {
   CHECK_THROWS_AS(writeSid(empty, "no_such_dir/x.sid.h5"), ComputeError);
 }
 
-TEST_CASE("Bezier extraction of the contact face reproduces the NURBS basis", "[sid]") {
-  const TensorSpace space(refine(solidSphere(0.01), 1, 2));
-  const ContactRegion region{1, true, {{0.3, 0.7}, {0.05, 0.2}}};
-  const ContactSurface cs = extractFaceSurface(space, region, "contact");
-  REQUIRE(cs.dim == 2);
-  REQUIRE(!cs.extraction.empty());
-  auto bernstein = [](int p, double t) {
-    Eigen::VectorXd b(p + 1);
-    for (int i = 0; i <= p; ++i)
-      b(i) = std::tgamma(p + 1.0) / (std::tgamma(i + 1.0) * std::tgamma(p - i + 1.0)) *
-             std::pow(t, i) * std::pow(1 - t, p - i);
-    return b;
-  };
-  PatchBasis R;
-  for (std::size_t e = 0; e < cs.extraction.size(); ++e) {
-    const double t0 = test::uniform(), t1 = test::uniform();
-    const double s0 =
-        cs.element_lower(e, 0) + t0 * (cs.element_upper(e, 0) - cs.element_lower(e, 0));
-    const double s1 =
-        cs.element_lower(e, 1) + t1 * (cs.element_upper(e, 1) - cs.element_lower(e, 1));
-    const Eigen::VectorXd b0 = bernstein(cs.degrees[0], t0), b1 = bernstein(cs.degrees[1], t1);
-    Eigen::VectorXd bern(b0.size() * b1.size());
-    for (int j = 0; j < b1.size(); ++j) bern.segment(j * b0.size(), b0.size()) = b0 * b1(j);
-    const Eigen::VectorXd B = cs.extraction[e] * bern;
-    double W = 0;
-    for (int k = 0; k < B.size(); ++k)
-      W += space.weights()(cs.functions[cs.function_offsets[e] + k]) * B(k);
-    const double xi[3] = {s0, 1.0, s1};
-    space.elementBasis(space.findElement(xi), xi, 0, R);
-    for (int k = 0; k < B.size(); ++k) {
-      const int fn = cs.functions[cs.function_offsets[e] + k];
-      const double rk = space.weights()(fn) * B(k) / W;
-      double ref = 0.0;
-      for (std::size_t j = 0; j < R.index.size(); ++j)
-        if (R.index[j] == fn) ref = R.table(0, j);
-      CHECK(std::abs(rk - ref) < 1e-13);  // round-off of the knot insertion products
-    }
-  }
-  // The outward sign: d x/ds_0 x d x/ds_1 times outward_sign points away from the centre.
-  const double xi[3] = {0.5, 1.0, 0.125};
-  const PatchPoint pt = space.evaluate(xi, 1);
-  const Eigen::Vector3d n = Eigen::Vector3d(pt.dx.col(0)).cross(Eigen::Vector3d(pt.dx.col(2)));
-  CHECK(cs.outward_sign * n.dot(pt.x) > 0.0);
-}
