@@ -8,7 +8,8 @@
 // boundaries (the element is looked up again). Robust fallback: when Newton fails to
 // converge, or no start is given, every element is sampled on a grid and Newton restarts
 // from the nearest sample; if it fails again the nearest sample is returned (converged =
-// false).
+// false). Newton is restarted from the best samples of the `restarts` nearest elements and
+// the closest converged result is kept.
 #pragma once
 
 #include <Eigen/Dense>
@@ -30,6 +31,7 @@ struct SurfaceProjection {
 struct ProjectionOptions {
   int max_iterations = 30;
   int samples_per_element = 4;  // per direction, for the fallback search
+  int restarts = 4;             // Newton starts from the nearest samples of this many elements
   // Convergence: |dx_a . r| <= tol * |dx_a| * (|r| + length scale) for every a.
   double tolerance = 1e-12;
   // Orthogonality test at the domain boundary (relative, dimensionless).

@@ -75,3 +75,39 @@ inline ContactSurface bezierExtract(const NurbsPatch& patch, double outward_sign
 }
 
 }  // namespace ffriga::test
+
+namespace ffriga::test {
+
+// Collocation points at the tensor Greville abscissae of the patch, each with the same
+// weight (m^2 or m): enough for tests of the contact kinematics.
+inline void addGrevilleCollocation(const NurbsPatch& patch, ContactSurface& s, double weight) {
+  const int d = patch.paramDim();
+  const std::vector<double> g0 = patch.knots(0).greville();
+  const std::vector<double> g1 = d == 2 ? patch.knots(1).greville() : std::vector<double>{0.0};
+  const int n = static_cast<int>(g0.size() * g1.size());
+  s.collocation_points.resize(n, d);
+  s.collocation_element.clear();
+  s.collocation_weights = Eigen::VectorXd::Constant(n, weight);
+  int i = 0;
+  for (double v : g1) {
+    for (double u : g0) {
+      s.collocation_points(i, 0) = u;
+      if (d == 2) s.collocation_points(i, 1) = v;
+      int e = 0;
+      for (int k = 0; k < s.element_lower.rows(); ++k) {
+        bool in = true;
+        for (int a = 0; a < d; ++a)
+          in = in && s.collocation_points(i, a) >= s.element_lower(k, a) &&
+               s.collocation_points(i, a) <= s.element_upper(k, a);
+        if (in) {
+          e = k;
+          break;
+        }
+      }
+      s.collocation_element.push_back(e);
+      ++i;
+    }
+  }
+}
+
+}  // namespace ffriga::test
