@@ -1,6 +1,8 @@
 #include "runtime/bdf_integrator.h"
 
+#include <cmath>
 #include <exception>
+#include <limits>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -103,6 +105,33 @@ void BdfIntegrator::advance(double tout, Eigen::VectorXd& y) {
   }
   m.check(flag, "CVode");
   y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(m.y), m.system->size());
+}
+
+double BdfIntegrator::step() {
+  Impl& m = *impl_;
+  realtype t = 0.0;
+  const int flag = CVode(m.cvode, std::numeric_limits<double>::max(), m.y, &t, CV_ONE_STEP);
+  if (m.rhs_error) {
+    std::exception_ptr e = m.rhs_error;
+    m.rhs_error = nullptr;
+    std::rethrow_exception(e);
+  }
+  m.check(flag, "CVode");
+  return t;
+}
+
+void BdfIntegrator::setStopTime(double t) {
+  impl_->check(CVodeSetStopTime(impl_->cvode, t), "CVodeSetStopTime");
+}
+
+void BdfIntegrator::interpolate(double t, Eigen::VectorXd& y) const {
+  const int n = impl_->system->size();
+  N_Vector dky = N_VNew_Serial(n, impl_->ctx);
+  if (!dky) throw ComputeError("CVODE: N_VNew_Serial failed");
+  const int flag = CVodeGetDky(impl_->cvode, t, 0, dky);
+  y = Eigen::Map<const Eigen::VectorXd>(N_VGetArrayPointer(dky), n);
+  N_VDestroy(dky);
+  impl_->check(flag, "CVodeGetDky");
 }
 
 double BdfIntegrator::time() const {

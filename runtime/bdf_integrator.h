@@ -51,6 +51,12 @@ class BdfIntegrator {
   // Integrates to tout and stores y(tout) (interpolated). Throws ComputeError on failure,
   // after which time() and state() hold the last successful internal step.
   void advance(double tout, Eigen::VectorXd& y);
+  // One internal step (CV_ONE_STEP), never past the stop time; returns the time reached.
+  double step();
+  void setStopTime(double t);
+  // Solution at t in the last step's interval [time() - last step, time()], by CVODE's
+  // interpolating polynomial (CVodeGetDky).
+  void interpolate(double t, Eigen::VectorXd& y) const;
   // Time of the last internal step and the solution there.
   double time() const;
   Eigen::VectorXd currentState() const;
