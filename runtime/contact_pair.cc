@@ -130,6 +130,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     Eigen::VectorXd s;
   };
   std::vector<PointResult> res(nc);
+  const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
 #pragma omp parallel for schedule(dynamic, 4)
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
@@ -141,9 +142,12 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     if (!near) continue;
     SurfaceProjection p = closestPoint(st.surface, wt.points, x, &sc.cache[i]);
     r.failed = !p.converged;
-    if (!p.converged || !p.orthogonal) continue;
-    sc.cache[i] = p;
-    const Eigen::VectorXd n = st.surface.normal(p.point.dx);
+    if (!p.converged) continue;
+    sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
+    if (!p.orthogonal) continue;
+    // World normal: the body's rule applied to world tangents, turned back if the body's
+    // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
+    const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
     r.gap = n.dot(x - p.point.x);
     if (r.gap >= 0.0) continue;
     r.active = true;
