@@ -7,6 +7,12 @@
 
 namespace ffriga {
 
+namespace {
+// Below this many collocation points the loop runs serially: thread start-up and spinning
+// cost more than the projections (measured: ~60 points of a 2D model take ~0.1 ms).
+constexpr int kParallelPoints = 128;
+}  // namespace
+
 ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b,
                          const BodyModel& B, int surfaceB, const ContactOptions& options)
     : name_(std::move(name)), index_{a, b}, options_(options) {
@@ -131,7 +137,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   };
   std::vector<PointResult> res(nc);
   const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
-#pragma omp parallel for schedule(dynamic, 4)
+#pragma omp parallel for schedule(dynamic, 8) if (nc >= kParallelPoints)
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
     r.xb = sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q;
