@@ -100,11 +100,15 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
   }
 
   // 3-4. SID files.
+  // All files are resolved before any is read: a missing file is reported at once.
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const std::string key = Str() << "bodies[" << b << "].sid";
+    scene.sid_files.push_back(resolveSid(doc, bodies[b]["sid"], key, sid_paths));
+  }
   std::vector<std::shared_ptr<FlexibleBodySid>> sids;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const std::string key = Str() << "bodies[" << b << "].sid";
-    const std::string file = resolveSid(doc, bodies[b]["sid"], key, sid_paths);
-    scene.sid_files.push_back(file);
+    const std::string& file = scene.sid_files[b];
     try {
       sids.push_back(std::make_shared<FlexibleBodySid>(load_sid(file)));
     } catch (const InputError& e) {
