@@ -78,3 +78,29 @@ void AxisymmetricBody::momentum(const double*, const double* sv, Eigen::Vector3d
 }
 
 }  // namespace ffriga
+
+namespace ffriga {
+
+void AxisymmetricBody::solveMass(const double*, Eigen::MatrixXd& B) const {
+  const int n = nq();
+  if (n == 0) {
+    B /= sid_->mass;
+    return;
+  }
+  // Schur complement on the rigid row, as in accelerations().
+  const Eigen::MatrixXd MeInvBq = Me_llt_.solve(B.bottomRows(n));
+  const Eigen::RowVectorXd aY = (B.row(0) - sign_ * ct_.transpose() * MeInvBq) / schur_;
+  B.row(0) = aY;
+  B.bottomRows(n) = MeInvBq - sign_ * MeInvCt_ * aY;
+}
+
+void AxisymmetricBody::pointGradients(const BodyPose& pose, const Eigen::VectorXd&,
+                                      const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
+                                      Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {
+  bv.resize(numVelocities());
+  bv(0) = n(1);
+  if (nq() > 0) bv.tail(nq()) = Phi_x.transpose() * (pose.A.transpose() * n);
+  bp = bv;
+}
+
+}  // namespace ffriga

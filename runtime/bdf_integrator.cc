@@ -3,6 +3,7 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <vector>
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>
@@ -46,6 +47,24 @@ struct BdfIntegrator::Impl {
     }
   }
 
+  static int jacobian(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void* data, N_Vector tmp1,
+                      N_Vector, N_Vector) {
+    Impl* self = static_cast<Impl*>(data);
+    try {
+      if (CVodeGetErrWeights(self->cvode, tmp1) < 0) return -1;
+      const sunindextype n = N_VGetLength(tmp1);
+      std::vector<double> scale(n);
+      for (sunindextype i = 0; i < n; ++i) scale[i] = 1.0 / NV_Ith_S(tmp1, i);
+      SUNMatZero(J);
+      self->system->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), scale.data(),
+                             SUNDenseMatrix_Data(J));
+      return 0;
+    } catch (...) {
+      self->rhs_error = std::current_exception();
+      return -1;
+    }
+  }
+
   static void errorHandler(int, const char* module, const char* function, char* msg, void* data) {
     static_cast<Impl*>(data)->last_message = Str() << module << "/" << function << ": " << msg;
   }
@@ -82,6 +101,15 @@ BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd
   m.ls = SUNLinSol_Dense(m.y, m.A, m.ctx);
   if (!m.ls) throw ComputeError("CVODE: SUNLinSol_Dense failed");
   m.check(CVodeSetLinearSolver(m.cvode, m.ls, m.A), "CVodeSetLinearSolver");
+  // The system's own Jacobian if it has one (probe with a zero-size call is not possible:
+  // ask at the initial state).
+  {
+    Eigen::VectorXd f(n), scale = Eigen::VectorXd::Ones(n);
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n, n);
+    system.rhs(t0, y0.data(), f.data());
+    if (system.jacobian(t0, y0.data(), f.data(), scale.data(), J.data()))
+      m.check(CVodeSetJacFn(m.cvode, &Impl::jacobian), "CVodeSetJacFn");
+  }
 }
 
 BdfIntegrator::~BdfIntegrator() {

@@ -57,6 +57,15 @@ class BodyModel {
   // `gravity`: inertial acceleration of gravity (3, m/s^2).
   virtual void accelerations(const double* sp, const double* sv, const double* h_applied,
                              const Eigen::Vector3d& gravity, double* accel) const = 0;
+  // Solves M(q) X = B in place (B: numVelocities() rows, any number of columns).
+  virtual void solveMass(const double* sp, Eigen::MatrixXd& B) const = 0;
+  // Velocity-space and position-space gradients of a world point's position for the contact
+  // stiffness: for the material point x (deformed, body frame) with modes Phi_x (d x nq) and
+  // a world direction n (d): bv = G_v^T n (numVelocities; the generalised force of a unit
+  // force along n) and bp = (dx_world/ds_p)^T n (numPositions; rotation parameters left 0).
+  virtual void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
+                              const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
+                              Eigen::VectorXd& bv, Eigen::VectorXd& bp) const = 0;
   // Adds the rigid part of the generalised force of a world force f (d components, N) acting
   // at body point x (d, deformed, m): translational and rotational parts of Eq. (18).
   virtual void addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x,

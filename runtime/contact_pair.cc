@@ -99,6 +99,7 @@ ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& b
 
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                            const BodyPose& pb, double* hA, double* hB, ContactState* state) {
+  terms_.clear();
   const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
   // Bounding-box pre-check: apart means no work.
   for (int c = 0; c < dim_; ++c) {
@@ -106,6 +107,7 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   }
   const double factor = options_.both_roles ? 0.5 : 1.0;
   ContactState s0, s1;
+  terms_.clear();
   collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, &s0);
   if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, &s1);
   if (state) {
@@ -131,7 +133,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     bool active = false;
     bool failed = false;
     double gap = 0.0;
-    Eigen::VectorXd f, xb, xt;  // force on C (world), body points of C and of T
+    Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
     int element = -1;
     Eigen::VectorXd s;
   };
@@ -157,6 +159,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     r.gap = n.dot(x - p.point.x);
     if (r.gap >= 0.0) continue;
     r.active = true;
+    r.n = n;
     r.f = (-options_.penalty * r.gap * sc.weight(i) * factor) * n;
     r.xt = pt.A.transpose() * (p.point.x - pt.origin);
     r.element = p.element;
@@ -182,8 +185,19 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     T.addRigidPointForce(pt, r.xt, minus, hT);
     const Eigen::VectorXd fbT = pt.A.transpose() * minus;
     st.surface.basis(r.element, r.s.data(), 0, R);
-    for (int k = 0; k < st.surface.numFunctions(r.element); ++k)
-      FT.row(local[st.surface.functions(r.element)[k]]) += R(0, k) * fbT.transpose();
+    Eigen::MatrixXd PhiT = Eigen::MatrixXd::Zero(d, T.nq());
+    for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
+      const int f = st.surface.functions(r.element)[k];
+      FT.row(local[f]) += R(0, k) * fbT.transpose();
+      if (T.nq() > 0) PhiT += R(0, k) * st.PhiS.middleRows(local[f] * d, d);
+    }
+    ContactStiffnessTerm term;
+    term.body_c = index_[c];
+    term.body_t = index_[1 - c];
+    term.k = options_.penalty * sc.weight(i) * factor;
+    C.pointGradients(pc, r.xb, sc.PhiC[i], r.n, term.bvC, term.bpC);
+    T.pointGradients(pt, r.xt, PhiT, r.n, term.bvT, term.bpT);
+    terms_.push_back(std::move(term));
     if (state) {
       state->force.head(d) += r.f;
       state->max_penetration = std::max(state->max_penetration, -r.gap);

@@ -47,6 +47,15 @@ struct ContactOptions {
   double search_margin = -1.0;  // m; < 0: 10 % of the larger surface's bounding box size
 };
 
+// Linearisation of one active collocation point for the Newton matrix (Eq. 17-18): with
+// g = n^T (x_C - x_T) and h_C = bvC phi, h_T = -bvT phi, phi = -k g, k = c_p w_i (role factor
+// included):  d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T  (change of n neglected).
+struct ContactStiffnessTerm {
+  int body_c = 0, body_t = 0;  // system body indices
+  double k = 0.0;              // N/m
+  Eigen::VectorXd bvC, bpC, bvT, bpT;
+};
+
 class ContactPair {
  public:
   ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b, const BodyModel& B,
@@ -57,6 +66,8 @@ class ContactPair {
   int bodyB() const { return index_[1]; }
   const ContactOptions& options() const { return options_; }
 
+  // Linearisation of the active points of the last evaluate().
+  const std::vector<ContactStiffnessTerm>& stiffnessTerms() const { return terms_; }
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
   // fills `state` if given.
   void evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B, const BodyPose& pb,
@@ -84,6 +95,7 @@ class ContactPair {
                  ContactState* state);
 
   std::string name_;
+  std::vector<ContactStiffnessTerm> terms_;
   int index_[2];
   ContactOptions options_;
   Side side_[2];

@@ -171,3 +171,28 @@ void FloatingBody3d::normalize(double* sp) const {
 }
 
 }  // namespace ffriga
+
+namespace ffriga {
+
+void FloatingBody3d::solveMass(const double* sp, Eigen::MatrixXd& B) const {
+  const Eigen::Map<const Eigen::VectorXd> q(sp + 7, nq());
+  B = massMatrix(q).ldlt().solve(B);
+}
+
+void FloatingBody3d::pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
+                                    const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
+                                    Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {
+  const Eigen::Vector3d nb = pose.A.transpose() * n;
+  const Eigen::Vector3d xb = x;
+  bv.resize(numVelocities());
+  bp.setZero(numPositions());
+  bv.head<3>() = nb;
+  bv.segment<3>(3) = xb.cross(nb);
+  bp.head<3>() = n;
+  if (nq() > 0) {
+    bv.tail(nq()) = Phi_x.transpose() * nb;
+    bp.tail(nq()) = bv.tail(nq());
+  }
+}
+
+}  // namespace ffriga

@@ -38,6 +38,10 @@ class FloatingBody3d : public BodyModel {
   void positionRates(const double* sp, const double* sv, double* spdot) const override;
   void accelerations(const double* sp, const double* sv, const double* h_applied,
                      const Eigen::Vector3d& gravity, double* accel) const override;
+  void solveMass(const double* sp, Eigen::MatrixXd& B) const override;
+  void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::MatrixXd& Phi_x,
+                      const Eigen::VectorXd& n, Eigen::VectorXd& bv,
+                      Eigen::VectorXd& bp) const override;
   void addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::VectorXd& f,
                           double* h) const override;
   double kineticEnergy(const double* sp, const double* sv) const override;

@@ -1,5 +1,8 @@
 #include "runtime/multibody_system.h"
 
+#include <cmath>
+#include <limits>
+
 #include "common/error.h"
 
 namespace ffriga {
@@ -57,6 +60,62 @@ void MultibodySystem::rhs(double, const double* y, double* ydot) {
     body.positionRates(sp, sv, ydot + pos_offset_[b]);
     body.accelerations(sp, sv, h_[b].data(), gravity_, ydot + vel_offset_[b]);
   }
+}
+
+bool MultibodySystem::jacobian(double, const double* y, const double*, const double* scale,
+                               double* Jdata) {
+  const int n = size_;
+  Eigen::Map<Eigen::MatrixXd> J(Jdata, n, n);
+  contactForces(y, h_, nullptr);
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int np = body.numPositions(), nv = body.numVelocities();
+    const int po = pos_offset_[b], vo = vel_offset_[b];
+    Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
+    body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
+    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
+    for (int k = 0; k < np + nv; ++k) {
+      const int j = k < np ? po + k : vo + (k - np);
+      const double saved = yy(j);
+      const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+      yy(j) = saved + delta;
+      body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
+      body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
+      yy(j) = saved;
+      J.block(po, j, np, 1) = (pr - pr0) / delta;
+      J.block(vo, j, nv, 1) = (a - a0) / delta;
+    }
+  }
+  // Contact stiffness: dh_X/ds_p(Y) = -k bv_X bp_Y^T (signs of the target side folded in).
+  bool any = false;
+  std::vector<Eigen::MatrixXd> dh(numBodies());
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bodiesOf[2] = {t.body_c, t.body_t};
+      const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
+      const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
+      for (int X = 0; X < 2; ++X) {
+        Eigen::MatrixXd& D = dh[bodiesOf[X]];
+        if (D.size() == 0) D.setZero(bodies_[bodiesOf[X]]->numVelocities(), n);
+        for (int Y = 0; Y < 2; ++Y) {
+          const double sign = (X == Y) ? -1.0 : 1.0;
+          const int po = pos_offset_[bodiesOf[Y]];
+          D.middleCols(po, bp[Y]->size()) += (sign * t.k) * (*bv[X]) * bp[Y]->transpose();
+        }
+      }
+      any = true;
+    }
+  }
+  if (any) {
+    for (int b = 0; b < numBodies(); ++b) {
+      if (dh[b].size() == 0) continue;
+      bodies_[b]->solveMass(y + pos_offset_[b], dh[b]);
+      J.middleRows(vel_offset_[b], dh[b].rows()) += dh[b];
+    }
+  }
+  return true;
 }
 
 void MultibodySystem::normalize(double* y) const {

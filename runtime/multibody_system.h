@@ -47,6 +47,11 @@ class MultibodySystem : public OdeSystem {
 
   void rhs(double t, const double* y, double* ydot) override;
   void normalize(double* y) const override;
+  // Newton-matrix Jacobian: difference quotients of each body's own rates with the contact
+  // forces frozen (cheap: no contact search), plus the analytic low-rank contact stiffness
+  // (contact_pair.h) mapped by M(q)^-1.
+  bool jacobian(double t, const double* y, const double* f, const double* scale,
+                double* J) override;
 
   // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
