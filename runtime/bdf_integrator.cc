@@ -12,6 +12,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "common/error.h"
+#include "runtime/eigen_dense_solver.h"
 
 namespace ffriga {
 
@@ -98,8 +99,9 @@ BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd
   if (o.initial_step > 0.0) m.check(CVodeSetInitStep(m.cvode, o.initial_step), "CVodeSetInitStep");
   m.A = SUNDenseMatrix(n, n, m.ctx);
   if (!m.A) throw ComputeError("CVODE: SUNDenseMatrix failed (out of memory?)");
-  m.ls = SUNLinSol_Dense(m.y, m.A, m.ctx);
-  if (!m.ls) throw ComputeError("CVODE: SUNLinSol_Dense failed");
+  m.ls = o.linear_solver == LinearSolverKind::kSundialsDense ? SUNLinSol_Dense(m.y, m.A, m.ctx)
+                                                             : newEigenDenseSolver(m.ctx);
+  if (!m.ls) throw ComputeError("CVODE: creating the linear solver failed (out of memory?)");
   m.check(CVodeSetLinearSolver(m.cvode, m.ls, m.A), "CVodeSetLinearSolver");
   // The system's own Jacobian if it has one (probe with a zero-size call is not possible:
   // ask at the initial state).

@@ -1,5 +1,6 @@
 // Stiff time integration of an OdeSystem with SUNDIALS CVODE (BDF, variable order 1..5 and
-// variable step, Newton iteration with a dense direct linear solver; the Jacobian by
+// variable step, Newton iteration with a dense direct linear solver: Eigen's LU by default,
+// runtime/eigen_dense_solver.h; the Jacobian from the system if it provides one, else by
 // CVODE's difference quotients). The paper uses MATLAB's ode15s (NDF/BDF); CVODE's BDF is
 // its direct equivalent.
 //
@@ -18,7 +19,11 @@
 
 namespace ffriga {
 
+// Dense LU of the Newton matrix: Eigen's blocked LU (default) or SUNDIALS' reference LU.
+enum class LinearSolverKind { kEigenDense, kSundialsDense };
+
 struct IntegratorOptions {
+  LinearSolverKind linear_solver = LinearSolverKind::kEigenDense;
   double rtol = 1e-6;         // relative tolerance (dimensionless)
   Eigen::VectorXd atol;       // absolute tolerance per component (units of y)
   double max_step = 0.0;      // s; 0: unlimited

@@ -59,6 +59,35 @@ FlexibleBodySid rigidSphere2d(double R) {
   return sid;
 }
 
+// The rigid sphere made flexible with nq synthetic modes (timing and balance tests, not a
+// physical model): mode j moves the surface control points near the top pole with a smooth
+// random pattern; Me = E, Ke = diag(omega_j^2) with omega from 2e5 to 2e7 rad/s, modal
+// damping 2 %, Ct = 0 (Buckens-like), so M = diag(m, E).
+FlexibleBodySid flexibleSphere2d(double R, int nq) {
+  FlexibleBodySid sid = rigidSphere2d(R);
+  const int ncp = static_cast<int>(sid.control_points.rows());
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(2 * ncp, nq);
+  std::srand(7);
+  for (int k = 0; k < ncp; ++k) {
+    const double y = sid.control_points(k, 1);
+    if (y < 0.9 * R) continue;
+    for (int j = 0; j < nq; ++j) {
+      // Axial and radial displacements; zero radial motion on the axis.
+      Phi(2 * k + 1, j) = 1e-3 * std::cos(0.7 * j * (R - y) / R * 40.0) * std::rand() / RAND_MAX;
+      if (sid.control_points(k, 0) > 0.0) Phi(2 * k, j) = 0.3 * Phi(2 * k + 1, j);
+    }
+  }
+  Eigen::VectorXd omega = Eigen::VectorXd::LinSpaced(nq, std::log(2e5), std::log(2e7));
+  omega = omega.array().exp();
+  sid.Phi = Phi;
+  sid.Me = Eigen::MatrixXd::Identity(nq, nq);
+  sid.Ke = omega.array().square().matrix().asDiagonal();
+  sid.De = (0.04 * omega).asDiagonal();
+  sid.Ct = Eigen::MatrixXd::Zero(nq, 3);
+  sid.frequencies_hz = omega / (2 * M_PI);
+  return sid;
+}
+
 // Writes empty placeholder files so that SID resolution finds them; the loader maps the
 // resolved path to an in-memory SID.
 SidLoader fakeLoader(const FlexibleBodySid& sid) {
@@ -85,6 +114,19 @@ integrator:
   output_interval: 1.0e-5
   rtol: 1.0e-8
 )";
+
+double runSpheres(const FlexibleBodySid& sid, double endTime, SimulationReport& r) {
+  std::string text = kScene;
+  Scene scene = buildScene(parseYamlText(text, "scene.yaml"), {}, fakeLoader(sid));
+  scene.settings.verbosity = 0;
+  scene.settings.end_time = endTime;
+  const std::string path = "scene_test_flexible.h5";
+  ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
+  r = simulate(*scene.system, scene.y0, scene.settings, writer);
+  writer.close();
+  std::remove(path.c_str());
+  return r.wall_time_s;
+}
 
 std::string errorOf(const std::string& text, const FlexibleBodySid& sid) {
   try {
@@ -145,6 +187,28 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
   REQUIRE(std::abs(vLower + 0.1) < 1e-5);
   f.reset();
   std::remove(path.c_str());
+}
+
+TEST_CASE("scene: flexible axisymmetric spheres collide and separate", "[scene]") {
+  SimulationReport r;
+  runSpheres(flexibleSphere2d(0.01, 10), 3.0e-4, r);
+  INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", wall "
+                    << r.wall_time_s << " s");
+  REQUIRE(r.completed);
+  REQUIRE(r.max_normal_force > 0.0);
+  REQUIRE(r.after.steps > 0);
+}
+
+// Timing of a paper-sized model (nq = 92 per body): run by hand with
+//   unit_tests "[.benchmark]" -s
+TEST_CASE("benchmark: flexible axisymmetric spheres, nq = 92", "[.benchmark]") {
+  SimulationReport r;
+  runSpheres(flexibleSphere2d(0.01, 92), 3.0e-4, r);
+  WARN("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", rhs "
+                    << r.stats.rhs_evals << ", jacobians " << r.stats.jacobian_evals << ", setups "
+                    << r.stats.linear_setups << ", wall " << r.wall_time_s << " s (before "
+                    << r.before.wall_s << ", during " << r.during.wall_s << ", after "
+                    << r.after.wall_s << ")");
 }
 
 TEST_CASE("scene: bad input names file, line and key", "[scene]") {
