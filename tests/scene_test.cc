@@ -5,8 +5,12 @@
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+
 #include "common/gauss_legendre.h"
+#include "common/json_schema.h"
 #include "common/refinement.h"
+#include "common/schemas.h"
 #include "runtime/scene.h"
 #include "surface_fixtures.h"
 
@@ -225,4 +229,17 @@ TEST_CASE("scene: bad input names file, line and key", "[scene]") {
                  Catch::Contains("SID file 'nowhere.sid.h5' not found"));
   CHECK_THAT(errorOf(replace(kScene, "position: [0, 0, 0]", "position: [0.1, 0, 0]"), sid),
              Catch::Contains("key 'bodies[0].position'"));
+}
+
+TEST_CASE("scene: every scene in configs/scenes satisfies the schema", "[scene]") {
+  int n = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(FFRIGA_SOURCE_DIR) + "/configs/scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path());
+    const JsonSchema schema(kSceneSchema, "scene.schema.json");
+    REQUIRE_NOTHROW(schema.validate(loadYamlFile(entry.path().string())));
+    ++n;
+  }
+  REQUIRE(n >= 8);
 }
