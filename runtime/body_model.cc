@@ -17,7 +17,8 @@ BodyModel::BodyModel(std::string name, std::shared_ptr<const FlexibleBodySid> si
   shape(s.Me, nq, nq, "Me");
   shape(s.Ke, nq, nq, "Ke");
   shape(s.De, nq, nq, "De");
-  shape(s.Ct, nq, 3, "Ct");
+  // Ct: nq x 3 (sid.h); axisymmetric SIDs may also store only the meridian columns (nq x 2).
+  if (!(s.space_dim == 2 && s.Ct.rows() == nq && s.Ct.cols() == 2)) shape(s.Ct, nq, 3, "Ct");
   shape(s.Phi, s.control_points.rows() * s.space_dim, nq, "Phi");
   if (!(s.mass > 0.0)) throw InputError(Str() << "body '" << name_ << "': mass " << s.mass);
   De_ = s.De;

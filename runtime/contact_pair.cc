@@ -75,6 +75,24 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
     const double ring = d == 2 ? 2.0 * M_PI * side.xc0(i, 0) : 1.0;
     side.weight(i) = cs.collocation_weights(i) * ring;
   }
+  // Orientation check of the SID's outward_sign (sid.h): if the normal at every collocation
+  // point points toward the centre of mass, the convention was mixed up (a wrong sign turns
+  // the penalty force into an attraction). Non-convex regions with mixed signs pass.
+  const Eigen::VectorXd c = (sid.first_moment / sid.mass).head(d);
+  int inward = 0;
+  SurfacePoint sp;
+  for (int i = 0; i < nc; ++i) {
+    const Eigen::VectorXd s = cs.collocation_points.row(i).transpose();
+    side.surface.evaluate(cs.collocation_element[i], s.data(), side.P0, 1, sp);
+    if (side.surface.normal(sp.dx).dot(sp.x - c) < 0.0) ++inward;
+  }
+  if (inward == nc) {
+    throw InputError(Str() << "body '" << body.name() << "', surface '" << cs.name
+                           << "': the outward normal (outward_sign " << cs.outward_sign
+                           << ") points toward the centre of mass at every collocation point; "
+                           << "expected it to point out of the body (2D rule: n = sign (t_y, "
+                           << "-t_x), 3D: n = sign x_s0 x x_s1)");
+  }
 }
 
 ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& body,

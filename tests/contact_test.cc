@@ -190,3 +190,14 @@ TEST_CASE("3D contact in time: two tumbling flexible bodies collide, momenta are
   REQUIRE((L1 - L0).norm() <= 1e-7 * L0.norm());
   REQUIRE((H1 - H0).norm() <= 1e-7 * H0.norm());
 }
+
+TEST_CASE("contact pair rejects a surface whose normals point into the body", "[contact]") {
+  auto a = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(1.0, 0.0), 1.0, 1));
+  auto b = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(-1.0, 0.6), 1.0, 1));
+  FloatingBody3d A("A", a), B("B", b);
+  ContactOptions opt;
+  opt.penalty = 1e4;
+  // B's patch has x_s0 x x_s1 along +z, into the body (its outside is -z): sign +1 is wrong.
+  REQUIRE_THROWS_WITH(ContactPair("A-B", 0, A, 0, 1, B, 0, opt),
+                      Catch::Contains("points toward the centre of mass"));
+}
