@@ -243,3 +243,26 @@ TEST_CASE("scene: every scene in configs/scenes satisfies the schema", "[scene]"
   }
   REQUIRE(n >= 8);
 }
+
+TEST_CASE("scene: SID names resolve against the scene folder, then each --sid-path", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  std::filesystem::create_directories("sid_path_test/first");
+  std::filesystem::create_directories("sid_path_test/second");
+  std::ofstream("sid_path_test/second/path_a.sid.h5") << "fake";
+  std::ofstream("sid_path_test/first/path_b.sid.h5") << "fake";
+  // Own file names: other scene tests (maybe running in parallel) write sphere_?.sid.h5.
+  const std::string text = replace(replace(kScene, "sphere_a", "path_a"), "sphere_b", "path_b");
+  // The scene "lives" in sid_path_test/, which holds neither file itself.
+  const Scene scene = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
+                                 {"sid_path_test/first", "sid_path_test/second"},
+                                 [&](const std::string&) { return sid; });
+  REQUIRE(scene.sid_files[0] == "sid_path_test/second/path_a.sid.h5");
+  REQUIRE(scene.sid_files[1] == "sid_path_test/first/path_b.sid.h5");
+  // A file next to the scene wins over the search path.
+  std::ofstream("sid_path_test/path_a.sid.h5") << "fake";
+  const Scene again = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
+                                 {"sid_path_test/first", "sid_path_test/second"},
+                                 [&](const std::string&) { return sid; });
+  REQUIRE(again.sid_files[0] == "sid_path_test/path_a.sid.h5");
+  std::filesystem::remove_all("sid_path_test");
+}
