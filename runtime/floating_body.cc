@@ -19,11 +19,37 @@ FloatingBody3d::FloatingBody3d(std::string name, std::shared_ptr<const FlexibleB
                            << s.Cr0.rows() << "x" << s.Cr0.cols() << "), Cr1 (" << s.Cr1.size()
                            << "), J1 (" << s.J1.size() << ") do not match nq = " << nq);
   }
+  checkCentrifugalInvariants();
   for (int j = 0; j < nq; ++j) {
     if (s.Cr1[j].rows() != 3 || s.Cr1[j].cols() != nq) {
       throw InputError(Str() << "body '" << name_ << "': SID Cr1[" << j << "] is "
                              << s.Cr1[j].rows() << "x" << s.Cr1[j].cols() << ", expected 3x" << nq);
     }
+  }
+}
+
+void FloatingBody3d::checkCentrifugalInvariants() const {
+  // Oe [w1^2, w2^2, w3^2, w1 w2, w2 w3, w1 w3]^T = int rho Phi^T w~ w~ x0 dV must equal
+  // -1/2 [w^T J1_i w]_i (sid.h); the equations use J1, so a disagreement means one of the
+  // two invariants was written with another convention. Checked at three angular velocities.
+  const FlexibleBodySid& s = *sid_;
+  const int nq = s.nq();
+  if (s.Oe.rows() != nq || s.Oe.cols() != 6 || nq == 0 || s.Oe.isZero(0.0)) return;
+  const Eigen::Vector3d ws[3] = {{1.0, 0.0, 0.0}, {0.3, -0.7, 0.5}, {-0.2, 0.4, 0.9}};
+  double worst = 0.0, scale = 0.0;
+  for (const Eigen::Vector3d& w : ws) {
+    Eigen::Matrix<double, 6, 1> w6;
+    w6 << w(0) * w(0), w(1) * w(1), w(2) * w(2), w(0) * w(1), w(1) * w(2), w(0) * w(2);
+    const Eigen::VectorXd fromOe = s.Oe * w6;
+    Eigen::VectorXd fromJ1(nq);
+    for (int i = 0; i < nq; ++i) fromJ1(i) = -0.5 * w.dot(s.J1[i] * w);
+    worst = std::max(worst, (fromOe - fromJ1).norm());
+    scale = std::max(scale, fromJ1.norm() + fromOe.norm());
+  }
+  if (worst > 1e-8 * scale) {
+    throw InputError(Str() << "body '" << name_ << "': SID invariants Oe and J1 disagree (|Oe w6 + "
+                           << "1/2 w^T J1 w| = " << worst << " against " << scale
+                           << "); see common/sid.h for their definitions");
   }
 }
 

@@ -57,6 +57,8 @@ class FloatingBody3d : public BodyModel {
     Eigen::MatrixXd CrT;  // Cr(q)^T, 3 x nq
   };
   Invariants invariants(const Eigen::VectorXd& q) const;
+  // Throws InputError if the SID's Oe (when present) contradicts J1 (sid.h).
+  void checkCentrifugalInvariants() const;
   // Full mass matrix M(q) (6 + nq square), for tests and energies.
   Eigen::MatrixXd massMatrix(const Eigen::VectorXd& q) const;
 };

@@ -220,3 +220,12 @@ TEST_CASE("floating body: Lagrange's equations of the elastic coordinates hold",
   INFO("residual " << residual.transpose() << " scale " << scale);
   REQUIRE(residual.norm() <= 1e-4 * scale);
 }
+
+TEST_CASE("floating body: SID Oe must agree with J1", "[ffr]") {
+  // The synthetic SID computes Oe from its definition; the check accepts it, and rejects a
+  // copy with the mixed terms doubled (a plausible convention slip).
+  auto sid = std::make_shared<FlexibleBodySid>(test::springBody(3, 2e3));
+  REQUIRE_NOTHROW(FloatingBody3d("b", sid));
+  sid->Oe.rightCols(3) *= 2.0;
+  REQUIRE_THROWS_WITH(FloatingBody3d("b", sid), Catch::Contains("Oe and J1 disagree"));
+}

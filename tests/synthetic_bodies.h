@@ -45,7 +45,21 @@ inline void pointMassInvariants(FlexibleBodySid& sid, const Eigen::VectorXd& m,
   sid.Me = Phi.transpose() * mdiag.asDiagonal() * Phi;
   sid.Ke = Phi.transpose() * K * Phi;
   sid.De = Eigen::MatrixXd::Zero(nq, nq);
+  // Oe from its definition int rho Phi^T w~ w~ x0 dV (sid.h), by sums.
   sid.Oe = Eigen::MatrixXd::Zero(nq, 6);
+  for (int a = 0; a < N; ++a) {
+    const Eigen::Vector3d x = X.row(a).transpose();
+    const Eigen::MatrixXd Pa = Phi.middleRows(3 * a, 3);
+    // w~ w~ x = w (w.x) - x |w|^2: coefficients of w1^2, w2^2, w3^2, w1 w2, w2 w3, w1 w3.
+    Eigen::Matrix<double, 3, 6> G;
+    G.col(0) << 0.0, -x(1), -x(2);
+    G.col(1) << -x(0), 0.0, -x(2);
+    G.col(2) << -x(0), -x(1), 0.0;
+    G.col(3) << x(1), x(0), 0.0;
+    G.col(4) << 0.0, x(2), x(1);
+    G.col(5) << x(2), 0.0, x(0);
+    sid.Oe += m(a) * Pa.transpose() * G;
+  }
   sid.frequencies_hz.resize(nq);
   for (int i = 0; i < nq; ++i) sid.frequencies_hz(i) = std::sqrt(sid.Ke(i, i)) / (2 * M_PI);
   sid.control_points = X;
