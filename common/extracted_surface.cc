@@ -1,113 +1,149 @@
 #include "common/extracted_surface.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "common/error.h"
 #include "common/rational_basis.h"
 
 namespace ffriga {
 
-void bernsteinDerivatives(int p, double t, int order, double* ders) {
-  FFRIGA_CHECK(p >= 0 && p <= kMaxDegree && order >= 0 && order <= 2, "p " << p);
-  // Bern_{b,q}(t) for q = p, p-1, p-2 by the de Casteljau-type recurrence, then
-  // d/dt Bern_{b,p} = p (Bern_{b-1,p-1} - Bern_{b,p-1}) and its repetition.
-  double B[3][kMaxDegree + 1];  // degrees p, p-1, p-2
-  auto bernsteinAll = [t](int q, double* out) {
-    out[0] = 1.0;
-    for (int j = 1; j <= q; ++j) {
-      double saved = 0.0;
-      for (int b = 0; b < j; ++b) {
-        const double tmp = out[b];
-        out[b] = saved + (1.0 - t) * tmp;
-        saved = t * tmp;
-      }
-      out[j] = saved;
+void bernsteinBasis(int p, double t, int order, Eigen::MatrixXd& out) {
+  // Values of degree p - r by the triangular recursion B_{i,k} = (1-t) B_{i,k-1} + t B_{i-1,k-1};
+  // derivatives: d/dt B_{i,p} = p (B_{i-1,p-1} - B_{i,p-1}) applied r times.
+  out.setZero(order + 1, p + 1);
+  std::vector<std::vector<double>> level(p + 1);
+  level[0] = {1.0};
+  for (int k = 1; k <= p; ++k) {
+    level[k].assign(k + 1, 0.0);
+    for (int i = 0; i <= k; ++i) {
+      const double left = i < k ? level[k - 1][i] : 0.0;
+      const double right = i > 0 ? level[k - 1][i - 1] : 0.0;
+      level[k][i] = (1.0 - t) * left + t * right;
     }
-  };
-  for (int k = 0; k <= order && k <= p; ++k) bernsteinAll(p - k, B[k]);
-  for (int k = 0; k <= order; ++k) {
-    for (int b = 0; b <= p; ++b) {
-      double v = 0.0;
-      if (k == 0) {
-        v = B[0][b];
-      } else if (k <= p) {
-        // k-th derivative: p!/(p-k)! sum_i (-1)^(k-i) C(k, i) Bern_{b-i, p-k}
-        double f = 1.0;
-        for (int i = 0; i < k; ++i) f *= p - i;
-        const int binom[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
-        for (int i = 0; i <= k; ++i) {
-          const int j = b - i;
-          if (j < 0 || j > p - k) continue;
-          v += ((k - i) % 2 ? -1.0 : 1.0) * binom[k][i] * B[k][j];
-        }
-        v *= f;
+  }
+  for (int r = 0; r <= order && r <= p; ++r) {
+    // Coefficients of the r-th derivative in the basis of degree p - r: finite differences.
+    const std::vector<double>& low = level[p - r];
+    double factor = 1.0;
+    for (int j = 0; j < r; ++j) factor *= p - j;
+    for (int i = 0; i <= p; ++i) {
+      double sum = 0.0;
+      // d^r B_{i,p} = p!/(p-r)! sum_j (-1)^(r-j) C(r,j) B_{i-j, p-r}
+      double binom = 1.0;
+      for (int j = 0; j <= r; ++j) {
+        const int idx = i - j;
+        if (idx >= 0 && idx <= p - r) sum += ((r - j) % 2 == 0 ? 1.0 : -1.0) * binom * low[idx];
+        binom = binom * (r - j) / (j + 1);
       }
-      ders[k * (p + 1) + b] = v;
+      out(r, i) = factor * sum;
     }
   }
 }
 
-ExtractedSurface::ExtractedSurface(const ContactSurface& surface, Eigen::MatrixXd points,
-                                   Eigen::VectorXd weights)
-    : surface_(surface), points_(std::move(points)), weights_(std::move(weights)) {
-  FFRIGA_CHECK(points_.rows() == weights_.size(), "points " << points_.rows());
-  FFRIGA_CHECK(surface_.dim == 1 || surface_.dim == 2, "dim " << surface_.dim);
-}
-
-void ExtractedSurface::basis(int e, const double* s, int order, PatchBasis& out) const {
-  const int dc = surface_.dim;
-  double ders[2][3 * (kMaxDegree + 1)];
-  int nb[2] = {1, 1};
-  double scale[2] = {1.0, 1.0};
-  for (int a = 0; a < dc; ++a) {
-    const double lo = surface_.element_lower(e, a), hi = surface_.element_upper(e, a);
-    scale[a] = 1.0 / (hi - lo);
-    bernsteinDerivatives(surface_.degrees[a], (s[a] - lo) * scale[a], order, ders[a]);
-    nb[a] = surface_.degrees[a] + 1;
-  }
-  // Tensor Bernstein table (rows as rational_basis.h), derivatives with respect to s.
-  const int rows = numDerivativeRows(dc, order);
-  int orders[6][2] = {};
-  for (int a = 0; a < dc && order >= 1; ++a) orders[1 + a][a] = 1;
-  if (order >= 2) {
-    for (int a = 0; a < dc; ++a)
-      for (int b = a; b < dc; ++b) {
-        orders[secondDerivativeRow(dc, a, b)][a] += 1;
-        orders[secondDerivativeRow(dc, a, b)][b] += 1;
-      }
-  }
-  Eigen::MatrixXd bern(rows, nb[0] * nb[1]);
-  for (int j1 = 0; j1 < nb[1]; ++j1) {
-    for (int j0 = 0; j0 < nb[0]; ++j0) {
-      const int j[2] = {j0, j1};
-      for (int r = 0; r < rows; ++r) {
-        double v = 1.0;
-        for (int a = 0; a < dc; ++a) {
-          const int k = orders[r][a];
-          v *= ders[a][k * nb[a] + j[a]] * (k == 0 ? 1.0 : k == 1 ? scale[a] : scale[a] * scale[a]);
-        }
-        bern(r, j0 + nb[0] * j1) = v;
-      }
+ExtractedSurface::ExtractedSurface(const ContactSurface& surface, const Eigen::VectorXd& weights)
+    : surface_(&surface), dim_(surface.dim) {
+  FFRIGA_CHECK(dim_ == 1 || dim_ == 2, "surface '" << surface.name << "' has dim " << dim_);
+  FFRIGA_CHECK(static_cast<int>(surface.degrees.size()) == dim_,
+               "surface '" << surface.name << "': " << surface.degrees.size() << " degrees");
+  const int ne = static_cast<int>(surface.element_lower.rows());
+  FFRIGA_CHECK(ne > 0 && surface.element_upper.rows() == ne &&
+                   surface.element_lower.cols() == dim_ &&
+                   static_cast<int>(surface.function_offsets.size()) == ne + 1 &&
+                   static_cast<int>(surface.extraction.size()) == ne,
+               "surface '" << surface.name << "': inconsistent element arrays");
+  int nb = 1;
+  for (int p : surface.degrees) nb *= p + 1;
+  lower_ = surface.element_lower;
+  upper_ = surface.element_upper;
+  domain_lo_ = lower_.colwise().minCoeff().transpose();
+  domain_hi_ = upper_.colwise().maxCoeff().transpose();
+  element_weights_.resize(ne);
+  for (int e = 0; e < ne; ++e) {
+    const int n = numFunctions(e);
+    FFRIGA_CHECK(surface.extraction[e].rows() == n && surface.extraction[e].cols() == nb,
+                 "surface '" << surface.name << "' element " << e << ": extraction operator is "
+                             << surface.extraction[e].rows() << "x" << surface.extraction[e].cols()
+                             << ", expected " << n << "x" << nb);
+    for (int a = 0; a < dim_; ++a) {
+      FFRIGA_CHECK(upper_(e, a) > lower_(e, a),
+                   "surface '" << surface.name << "' element " << e << ": empty box");
+    }
+    element_weights_[e].resize(n);
+    for (int i = 0; i < n; ++i) {
+      const int k = functions(e)[i];
+      FFRIGA_CHECK(k >= 0 && k < weights.size(),
+                   "surface '" << surface.name << "': function " << k << " out of range");
+      element_weights_[e](i) = weights(k);
+      all_functions_.push_back(k);
     }
   }
-  const int f0 = surface_.function_offsets[e], f1 = surface_.function_offsets[e + 1];
-  const Eigen::MatrixXd B = bern * surface_.extraction[e].transpose();
-  Eigen::VectorXd w(f1 - f0);
-  out.index.assign(surface_.functions.begin() + f0, surface_.functions.begin() + f1);
-  for (int k = 0; k < w.size(); ++k) w(k) = weights_(out.index[k]);
-  rationalize(B, w, dc, order, out.table);
+  std::sort(all_functions_.begin(), all_functions_.end());
+  all_functions_.erase(std::unique(all_functions_.begin(), all_functions_.end()),
+                       all_functions_.end());
 }
 
-PatchPoint ExtractedSurface::evaluate(int e, const double* s, int order) const {
-  PatchBasis R;
+int ExtractedSurface::findElement(const double* s) const {
+  for (int e = 0; e < numElements(); ++e) {
+    bool inside = true;
+    for (int a = 0; a < dim_ && inside; ++a) inside = s[a] >= lower_(e, a) && s[a] <= upper_(e, a);
+    if (inside) return e;
+  }
+  return -1;
+}
+
+void ExtractedSurface::basis(int e, const double* s, int order, Eigen::MatrixXd& R) const {
+  const std::vector<int>& p = surface_->degrees;
+  Eigen::MatrixXd b0, b1;
+  const double h0 = upper_(e, 0) - lower_(e, 0);
+  bernsteinBasis(p[0], (s[0] - lower_(e, 0)) / h0, order, b0);
+  for (int r = 1; r <= order; ++r) b0.row(r) /= std::pow(h0, r);
+  const int rows = numDerivativeRows(dim_, order);
+  Eigen::MatrixXd bern(rows, 1);
+  if (dim_ == 1) {
+    bern = b0.topRows(rows);
+  } else {
+    const double h1 = upper_(e, 1) - lower_(e, 1);
+    bernsteinBasis(p[1], (s[1] - lower_(e, 1)) / h1, order, b1);
+    for (int r = 1; r <= order; ++r) b1.row(r) /= std::pow(h1, r);
+    const int n0 = p[0] + 1, n1 = p[1] + 1;
+    bern.resize(rows, n0 * n1);
+    // Derivative orders (r0, r1) of each table row for dc = 2.
+    static const int kOrders[6][2] = {{0, 0}, {1, 0}, {0, 1}, {2, 0}, {1, 1}, {0, 2}};
+    for (int row = 0; row < rows; ++row) {
+      for (int j = 0; j < n1; ++j)
+        for (int i = 0; i < n0; ++i)
+          bern(row, i + n0 * j) = b0(kOrders[row][0], i) * b1(kOrders[row][1], j);
+    }
+  }
+  const Eigen::MatrixXd B = bern * surface_->extraction[e].transpose();
+  rationalize(B, element_weights_[e], dim_, order, R);
+}
+
+void ExtractedSurface::evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
+                                SurfacePoint& out) const {
+  Eigen::MatrixXd R;
   basis(e, s, order, R);
-  const int dc = surface_.dim;
-  Eigen::MatrixXd P(R.index.size(), points_.cols());
-  for (int c = 0; c < P.rows(); ++c) P.row(c) = points_.row(R.index[c]);
-  const Eigen::MatrixXd X = R.table * P;
-  PatchPoint pt;
-  pt.x = X.row(0).transpose();
-  if (order >= 1) pt.dx = X.middleRows(1, dc).transpose();
-  if (order >= 2) pt.ddx = X.middleRows(1 + dc, dc * (dc + 1) / 2).transpose();
-  return pt;
+  const int sd = static_cast<int>(points.cols());
+  const int n = numFunctions(e);
+  const int* f = functions(e);
+  Eigen::MatrixXd table = Eigen::MatrixXd::Zero(R.rows(), sd);
+  for (int i = 0; i < n; ++i) table += R.col(i) * points.row(f[i]);
+  out.x = table.row(0).transpose();
+  if (order >= 1) out.dx = table.middleRows(1, dim_).transpose();
+  if (order >= 2) out.ddx = table.bottomRows(dim_ * (dim_ + 1) / 2).transpose();
+}
+
+Eigen::VectorXd ExtractedSurface::normal(const Eigen::MatrixXd& dx) const {
+  Eigen::VectorXd n;
+  if (dim_ == 2) {
+    const Eigen::Vector3d a = dx.col(0), b = dx.col(1);
+    n = a.cross(b);
+  } else {
+    n.resize(2);
+    n << dx(1, 0), -dx(0, 0);
+  }
+  return surface_->outward_sign * n / n.norm();
 }
 
 }  // namespace ffriga

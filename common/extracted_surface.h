@@ -1,46 +1,79 @@
-// Evaluation of a Bezier-extracted contact surface (common/sid.h, ContactSurface) with
-// given, possibly deformed, control points: the runtime's view of a body's contact face.
+// Evaluation of a Bezier-extracted contact surface (common/sid.h, ContactSurface) for given,
+// possibly deformed, control points (paper Eq. 4-6, 14):
 //
-// On element e with box [lo, hi] (surface parameters s, dimension dc = 1 or 2):
-//   t_a = (s_a - lo_a) / (hi_a - lo_a),   Bern_b(t) = prod_a C(p_a, b_a) t^b_a (1-t)^(p_a-b_a),
-//   B_k(s) = sum_b E_e(k, b) Bern_b(t),     R_k = w_k B_k / sum_l w_l B_l   (paper Eq. 4),
-//   x(s) = sum_k R_k(s) P_k,
-// derivatives with respect to s by the chain rule (d/ds_a = 1/(hi_a - lo_a) d/dt_a) and the
-// quotient rule (rationalize(), rational_basis.h). Units: P in metres, s dimensionless.
+//   on element e with box [lo, hi]:  t = (s - lo) / (hi - lo),
+//   B_k(s) = sum_b C_e(k, b) Bern_b(t),   R_k = w_k B_k / sum_l w_l B_l,
+//   x(s)   = sum_k R_k(s) P_k,            P_k = P0_k + Phi_k q  (deformed control points).
+//
+// Bern_b are tensor Bernstein polynomials (first direction fastest); derivatives are taken
+// w.r.t. the surface parameters s (chain rule 1/(hi - lo) per direction). Tables follow
+// common/rational_basis.h (row 0 value, rows 1..dc first derivatives, then second ones).
+// Parametric dimension dc = 1 (curve of a 2D body) or 2 (face of a 3D body).
+//
+// Outward normal (Sect. 4, Eq. 16): dc = 2: n = sign * (x_s0 x x_s1) / |..|;
+// dc = 1: n = sign * (t_y, -t_x) / |t| with t = x_s0 (the 3D rule for the curve extruded
+// along +z), sign = ContactSurface::outward_sign.
 #pragma once
+
+#include <vector>
 
 #include <Eigen/Dense>
 
-#include "common/nurbs_patch.h"
 #include "common/sid.h"
 
 namespace ffriga {
 
-// Bernstein polynomials of degree p (<= kMaxDegree) and their first and second derivatives
-// at t: ders[k * (p + 1) + b] = d^k/dt^k Bern_b(t), k <= order <= 2.
-void bernsteinDerivatives(int p, double t, int order, double* ders);
+// Bernstein polynomials of degree p at t in [0, 1] with derivatives up to `order` (<= 2):
+// out(r, i) = d^r/dt^r Bern_{i,p}(t).
+void bernsteinBasis(int p, double t, int order, Eigen::MatrixXd& out);
+
+struct SurfacePoint {
+  Eigen::VectorXd x;    // position (space dimension)
+  Eigen::MatrixXd dx;   // first derivatives, columns d/ds_a
+  Eigen::MatrixXd ddx;  // second derivatives, columns as rational_basis.h rows (a <= b)
+};
 
 class ExtractedSurface {
  public:
-  // points: all body control points (ncp x s, metres); weights: ncp. Function numbers in
-  // the surface index these arrays.
-  ExtractedSurface(const ContactSurface& surface, Eigen::MatrixXd points, Eigen::VectorXd weights);
+  ExtractedSurface() = default;
+  // `weights`: the body's control point weights (indexed by body control point number).
+  // Throws std::invalid_argument if the surface data are inconsistent.
+  ExtractedSurface(const ContactSurface& surface, const Eigen::VectorXd& weights);
 
-  const ContactSurface& surface() const { return surface_; }
-  int numElements() const { return static_cast<int>(surface_.element_level.size()); }
-  // Replace the control points (deformed configuration), same numbering.
-  void setPoints(const Eigen::MatrixXd& points) { points_ = points; }
+  int dim() const { return dim_; }
+  int numElements() const { return static_cast<int>(lower_.rows()); }
+  const ContactSurface& surface() const { return *surface_; }
+  // Body control points of element e and their number.
+  const int* functions(int e) const { return surface_->functions.data() + offsets(e); }
+  int numFunctions(int e) const { return offsets(e + 1) - offsets(e); }
+  // All body control points used by the surface (sorted, unique).
+  const std::vector<int>& allFunctions() const { return all_functions_; }
+  Eigen::VectorXd elementLower(int e) const { return lower_.row(e).transpose(); }
+  Eigen::VectorXd elementUpper(int e) const { return upper_.row(e).transpose(); }
+  // Bounding box of the whole parameter domain.
+  const Eigen::VectorXd& domainLower() const { return domain_lo_; }
+  const Eigen::VectorXd& domainUpper() const { return domain_hi_; }
 
-  // Rational basis of the element's functions at surface parameters s (inside element e)
-  // with derivatives up to `order` (<= 2); rows as in rational_basis.h with d = dc.
-  void basis(int e, const double* s, int order, PatchBasis& out) const;
-  // x(s), dx/ds (s x dc), d2x/ds2 (s x dc(dc+1)/2).
-  PatchPoint evaluate(int e, const double* s, int order = 0) const;
+  // Element containing s (closed boxes, the first match), or -1 if none does.
+  int findElement(const double* s) const;
+  // Rational basis table of element e at s: numDerivativeRows(dim, order) x numFunctions(e).
+  void basis(int e, const double* s, int order, Eigen::MatrixXd& R) const;
+  // Point and derivatives; `points` holds the (deformed) control points, one row per body
+  // control point (only the rows of this surface's functions are read).
+  void evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
+                SurfacePoint& out) const;
+  // Unit outward normal from first derivatives (header comment).
+  Eigen::VectorXd normal(const Eigen::MatrixXd& dx) const;
 
  private:
-  ContactSurface surface_;
-  Eigen::MatrixXd points_;
-  Eigen::VectorXd weights_;
+  int offsets(int e) const { return surface_->function_offsets[e]; }
+
+  const ContactSurface* surface_ = nullptr;
+  int dim_ = 0;
+  Eigen::MatrixXd lower_, upper_;
+  Eigen::VectorXd domain_lo_, domain_hi_;
+  std::vector<Eigen::VectorXd> element_weights_;  // weights of each element's functions
+  std::vector<int> all_functions_;
 };
 
 }  // namespace ffriga

@@ -4,6 +4,7 @@
 
 namespace ffriga {
 
-extern const char* const kBodySchema;  // schemas/body.schema.json
+extern const char* const kBodySchema;   // schemas/body.schema.json
+extern const char* const kSceneSchema;  // schemas/scene.schema.json
 
 }  // namespace ffriga

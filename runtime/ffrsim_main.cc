@@ -1,12 +1,24 @@
 // ffrsim: flexible bodies in the floating frame of reference with NURBS penalty contact.
 //
-//   ffrsim SCENE.yaml -o RESULT.h5
+//   ffrsim SCENE.yaml -o RESULT.h5 [--sid-path DIR]... [-q|-v] [--threads N]
 //
-// This version answers --help and --version; the simulation is being built (issue 5).
+// Loads the scene (schemas/scene.schema.json) and the bodies' SID files, integrates the
+// equations of motion (paper Eq. 1) with penalty contact (Sect. 4) by CVODE's BDF method and
+// writes the result file (schemas/result_format.md) as the run goes. Ctrl-C stops the run
+// between steps and leaves a complete, readable file whose `status` says so.
+#include <cstdio>
 #include <iostream>
 
 #include "common/cli.h"
 #include "common/version.h"
+#include "runtime/result_writer.h"
+#include "runtime/scene.h"
+#include "runtime/simulation.h"
+
+#if __has_include("common/sid_file.h")
+#include "common/sid_file.h"
+#define FFRIGA_HAVE_SID_FILE 1
+#endif
 
 namespace {
 
@@ -16,21 +28,61 @@ Simulates impacts between reduced flexible bodies (SID files written by igaprep)
 floating frame of reference with penalty contact between NURBS surfaces.
 
 options:
-  -o, --output FILE  result file (HDF5)
+  -o, --output FILE  result file (HDF5, schemas/result_format.md)
+  --sid-path DIR     folder to search for SID files named in the scene (repeatable);
+                     relative names are tried in the scene's folder first
   -q, --quiet        print nothing but errors
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
   -h, --help         show this help and exit
   --version          show the version and exit
 
-Exit codes: 0 success, 2 bad input or usage, 1 failure while computing.
+Scene files: schemas/scene.schema.json. Ctrl-C stops the run and keeps the result file.
+Exit codes: 0 success, 2 bad input or usage, 1 failure while computing (or interrupted).
 )";
+
+// The SID reader: common/sid_file.h (issue 4) when this source tree has it.
+ffriga::FlexibleBodySid loadSid(const std::string& path) {
+#ifdef FFRIGA_HAVE_SID_FILE
+  return ffriga::readSid(path);
+#else
+  throw ffriga::InputError(ffriga::Str() << path << ": this build of ffrsim cannot read SID files "
+                                         << "(common/sid_file.h is missing from the source tree)");
+#endif
+}
+
+void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r) {
+  const ffriga::IntegratorStats& s = r.stats;
+  std::printf("ffrsim %s: scene '%s': %s\n", ffriga::kVersion, scene.name.c_str(),
+              r.status.c_str());
+  std::printf("  simulated %.6g s in %.3f s of wall time\n", r.final_time, r.wall_time_s);
+  std::printf(
+      "  steps %ld, right-hand sides %ld (+%ld for Jacobians), Jacobians %ld,\n"
+      "  Newton iterations %ld, error test failures %ld, convergence failures %ld\n",
+      s.steps, s.rhs_evals, s.jacobian_rhs_evals, s.jacobian_evals, s.nonlinear_iterations,
+      s.error_test_failures, s.convergence_failures);
+  std::printf("  %-16s %10s %8s %10s\n", "phase", "wall [s]", "steps", "rhs");
+  const ffriga::PhaseStats* p[3] = {&r.before, &r.during, &r.after};
+  const char* names[3] = {"before contact", "during contact", "after contact"};
+  for (int i = 0; i < 3; ++i)
+    std::printf("  %-16s %10.3f %8ld %10ld\n", names[i], p[i]->wall_s, p[i]->steps,
+                p[i]->rhs_evals);
+  if (scene.system->numContacts() > 0)
+    std::printf("  maximum contact force %.6g N (at the steps)\n", r.max_normal_force);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   return ffriga::runProgram("ffrsim", [&]() {
-    const ffriga::CommonOptions o = ffriga::parseCommonOptions(argc, argv);
+    std::vector<std::string> sidPaths;
+    const ffriga::CommonOptions o =
+        ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
+          if (std::string(av[i]) != "--sid-path") return 0;
+          if (i + 1 >= ac) throw ffriga::UsageError("option --sid-path needs a value");
+          sidPaths.push_back(av[i + 1]);
+          return 2;
+        });
     if (o.help) {
       std::cout << kUsage;
       return 0;
@@ -39,7 +91,22 @@ int main(int argc, char** argv) {
       std::cout << "ffrsim " << ffriga::kVersion << "\n";
       return 0;
     }
-    throw ffriga::UsageError(
-        "simulating scenes is not available in this version of ffrsim (see --help)");
+    if (o.positional.size() != 1) throw ffriga::UsageError("expected one scene file (see --help)");
+    if (o.output.empty()) throw ffriga::UsageError("missing -o RESULT.h5 (see --help)");
+    ffriga::Scene scene = ffriga::loadScene(o.positional[0], sidPaths, loadSid);
+    scene.settings.verbosity = o.verbosity;
+    ffriga::ResultWriter writer(o.output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
+                                scene.doc.text, scene.flush_rows);
+    ffriga::installInterruptHandler();
+    const ffriga::SimulationReport r =
+        ffriga::simulate(*scene.system, scene.y0, scene.settings, writer);
+    writer.close();
+    if (o.verbosity > 0) printSummary(scene, r);
+    if (r.interrupted) {
+      std::fprintf(stderr, "ffrsim: %s; %s holds the results up to then\n", r.status.c_str(),
+                   o.output.c_str());
+      return 1;
+    }
+    return 0;
   });
 }

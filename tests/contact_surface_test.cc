@@ -34,12 +34,24 @@ ParamBox faceRegion(const HierarchicalSpace& H, int dir) {
   return r;
 }
 
+// The runtime's evaluator of a ContactSurface at (e, s), as a PatchPoint.
+PatchPoint evaluateSurface(const ContactSurface& cs, const HierarchicalSpace& H, int e,
+                           const double* s, int order) {
+  const ExtractedSurface surf(cs, H.weights());
+  SurfacePoint sp;
+  surf.evaluate(e, s, H.controlPoints(), order, sp);
+  PatchPoint p;
+  p.x = sp.x;
+  p.dx = sp.dx;
+  p.ddx = sp.ddx;
+  return p;
+}
+
 // Compares ExtractedSurface with HierarchicalSpace::evaluate on the face xi_dir = 1.
 void checkAgainstVolume(const HierarchicalSpace& H, const ContactSurface& cs, int dir) {
-  const ExtractedSurface surf(cs, H.controlPoints(), H.weights());
   const int d = H.paramDim(), dc = d - 1;
   double ex = 0, edx = 0, eddx = 0;
-  for (int e = 0; e < surf.numElements(); ++e) {
+  for (int e = 0; e < static_cast<int>(cs.element_level.size()); ++e) {
     // Derivatives of a Bezier (or B-spline) form on an element of width h are differences
     // of O(|x|) coefficients times 1/h^k: round-off scales as eps |x| / h^k.
     const double h = (cs.element_upper.row(e) - cs.element_lower.row(e)).minCoeff();
@@ -55,7 +67,7 @@ void checkAgainstVolume(const HierarchicalSpace& H, const ContactSurface& cs, in
         xi[a] = s[i];
         ++i;
       }
-      const PatchPoint a = surf.evaluate(e, s, 2);
+      const PatchPoint a = evaluateSurface(cs, H, e, s, 2);
       const PatchPoint b = H.evaluate(xi, 2);
       ex = std::max(ex, (a.x - b.x).norm() / b.x.norm());
       int j = 0;
@@ -107,7 +119,7 @@ TEST_CASE("axisymmetric contact surface: traces, weights, collocation", "[contac
   CHECK(cs.collocation_points.minCoeff() >= region.lower[0]);
   CHECK(cs.collocation_points.maxCoeff() <= region.upper[0]);
   const double s[1] = {0.5 * (cs.element_lower(0, 0) + cs.element_upper(0, 0))};
-  const PatchPoint p = ExtractedSurface(cs, H.controlPoints(), H.weights()).evaluate(0, s, 1);
+  const PatchPoint p = evaluateSurface(cs, H, 0, s, 1);
   const Eigen::Vector2d n(p.dx(1, 0), -p.dx(0, 0));
   CHECK(cs.outward_sign * n.dot(p.x) > 0.0);
 }
@@ -137,7 +149,7 @@ TEST_CASE("solid contact surface: traces, weights, collocation", "[contact]") {
   // The sphere's outward normal is the position direction (centre at the origin).
   const double s[2] = {0.5 * (cs.element_lower(0, 0) + cs.element_upper(0, 0)),
                        0.5 * (cs.element_lower(0, 1) + cs.element_upper(0, 1))};
-  const PatchPoint p = ExtractedSurface(cs, H.controlPoints(), H.weights()).evaluate(0, s, 1);
+  const PatchPoint p = evaluateSurface(cs, H, 0, s, 1);
   const Eigen::Vector3d n = Eigen::Vector3d(p.dx.col(0)).cross(Eigen::Vector3d(p.dx.col(1)));
   CHECK(cs.outward_sign * n.dot(p.x) > 0.0);
   for (int k = 0; k < cs.collocation_points.rows(); ++k) {

@@ -1,0 +1,154 @@
+#include "runtime/multibody_system.h"
+
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+
+namespace ffriga {
+
+int MultibodySystem::addBody(std::unique_ptr<BodyModel> body) {
+  bodies_.push_back(std::move(body));
+  layout();
+  return numBodies() - 1;
+}
+
+void MultibodySystem::addContact(std::unique_ptr<ContactPair> pair) {
+  FFRIGA_CHECK(pair->bodyA() < numBodies() && pair->bodyB() < numBodies(), "contact body index");
+  contacts_.push_back(std::move(pair));
+}
+
+void MultibodySystem::layout() {
+  pos_offset_.clear();
+  vel_offset_.clear();
+  int n = 0;
+  for (const auto& b : bodies_) {
+    pos_offset_.push_back(n);
+    n += b->numPositions();
+  }
+  for (const auto& b : bodies_) {
+    vel_offset_.push_back(n);
+    n += b->numVelocities();
+  }
+  size_ = n;
+  h_.resize(bodies_.size());
+}
+
+void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
+                                    std::vector<ContactState>* states) {
+  h.resize(bodies_.size());
+  std::vector<BodyPose> poses(bodies_.size());
+  for (int b = 0; b < numBodies(); ++b) {
+    h[b].setZero(bodies_[b]->numVelocities());
+    if (!contacts_.empty()) poses[b] = bodies_[b]->pose(y + pos_offset_[b]);
+  }
+  if (states) states->assign(contacts_.size(), ContactState());
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    ContactPair& pair = *contacts_[c];
+    const int a = pair.bodyA(), b = pair.bodyB();
+    pair.evaluate(*bodies_[a], poses[a], *bodies_[b], poses[b], h[a].data(), h[b].data(),
+                  states ? &(*states)[c] : nullptr);
+  }
+}
+
+void MultibodySystem::rhs(double, const double* y, double* ydot) {
+  contactForces(y, h_, nullptr);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const double* sp = y + pos_offset_[b];
+    const double* sv = y + vel_offset_[b];
+    body.positionRates(sp, sv, ydot + pos_offset_[b]);
+    body.accelerations(sp, sv, h_[b].data(), gravity_, ydot + vel_offset_[b]);
+  }
+}
+
+bool MultibodySystem::jacobian(double, const double* y, const double*, const double* scale,
+                               double* Jdata) {
+  const int n = size_;
+  Eigen::Map<Eigen::MatrixXd> J(Jdata, n, n);
+  contactForces(y, h_, nullptr);
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int np = body.numPositions(), nv = body.numVelocities();
+    const int po = pos_offset_[b], vo = vel_offset_[b];
+    Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
+    body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
+    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
+    for (int k = 0; k < np + nv; ++k) {
+      const int j = k < np ? po + k : vo + (k - np);
+      const double saved = yy(j);
+      const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+      yy(j) = saved + delta;
+      body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
+      body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
+      yy(j) = saved;
+      J.block(po, j, np, 1) = (pr - pr0) / delta;
+      J.block(vo, j, nv, 1) = (a - a0) / delta;
+    }
+  }
+  // Contact stiffness: dh_X/ds_p(Y) = -k bv_X bp_Y^T (signs of the target side folded in).
+  bool any = false;
+  std::vector<Eigen::MatrixXd> dh(numBodies());
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bodiesOf[2] = {t.body_c, t.body_t};
+      const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
+      const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
+      for (int X = 0; X < 2; ++X) {
+        Eigen::MatrixXd& D = dh[bodiesOf[X]];
+        if (D.size() == 0) D.setZero(bodies_[bodiesOf[X]]->numVelocities(), n);
+        for (int Y = 0; Y < 2; ++Y) {
+          const double sign = (X == Y) ? -1.0 : 1.0;
+          const int po = pos_offset_[bodiesOf[Y]];
+          D.middleCols(po, bp[Y]->size()) += (sign * t.k) * (*bv[X]) * bp[Y]->transpose();
+        }
+      }
+      any = true;
+    }
+  }
+  if (any) {
+    for (int b = 0; b < numBodies(); ++b) {
+      if (dh[b].size() == 0) continue;
+      bodies_[b]->solveMass(y + pos_offset_[b], dh[b]);
+      J.middleRows(vel_offset_[b], dh[b].rows()) += dh[b];
+    }
+  }
+  return true;
+}
+
+void MultibodySystem::normalize(double* y) const {
+  for (int b = 0; b < numBodies(); ++b) bodies_[b]->normalize(y + pos_offset_[b]);
+}
+
+SystemEnergies MultibodySystem::energies(const double* y) {
+  SystemEnergies e;
+  for (int b = 0; b < numBodies(); ++b) {
+    const double* sp = y + pos_offset_[b];
+    e.kinetic += bodies_[b]->kineticEnergy(sp, y + vel_offset_[b]);
+    e.elastic += bodies_[b]->elasticEnergy(sp);
+    e.gravity += bodies_[b]->gravityEnergy(sp, gravity_);
+  }
+  if (!contacts_.empty()) {
+    std::vector<ContactState> states;
+    std::vector<Eigen::VectorXd> h;
+    contactForces(y, h, &states);
+    for (const ContactState& s : states) e.contact += s.energy;
+  }
+  return e;
+}
+
+void MultibodySystem::momentum(const double* y, Eigen::Vector3d& linear,
+                               Eigen::Vector3d& angular) const {
+  linear.setZero();
+  angular.setZero();
+  for (int b = 0; b < numBodies(); ++b) {
+    Eigen::Vector3d l, a;
+    bodies_[b]->momentum(y + pos_offset_[b], y + vel_offset_[b], l, a);
+    linear += l;
+    angular += a;
+  }
+}
+
+}  // namespace ffriga

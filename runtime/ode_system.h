@@ -1,0 +1,26 @@
+// What the time integrator sees of the physics: a first-order system dy/dt = f(t, y) of
+// fixed size (Chrono's ChIntegrable idea). The integrator never looks inside.
+#pragma once
+
+namespace ffriga {
+
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  virtual int size() const = 0;
+  // dy/dt at (t, y). May throw; the integrator stops and rethrows.
+  virtual void rhs(double t, const double* y, double* ydot) = 0;
+  // Optional Jacobian J = df/dy at (t, y) with f = f(t, y) given, into the column-major n x n
+  // array J (zeroed by the caller). `scale`: a typical magnitude of each y_j (difference
+  // quotient increments). Returns false if the system provides none (the integrator then
+  // uses difference quotients of its own).
+  virtual bool jacobian(double t, const double* y, const double* f, const double* scale,
+                        double* J) {
+    (void)t, (void)y, (void)f, (void)scale, (void)J;
+    return false;
+  }
+  // Called by the driver between output intervals to project invariants (unit quaternions).
+  virtual void normalize(double* y) const { (void)y; }
+};
+
+}  // namespace ffriga

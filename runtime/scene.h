@@ -1,0 +1,51 @@
+// Scene files of ffrsim (schemas/scene.schema.json): bodies from SID files with their initial
+// state, contact pairs, gravity, damping overrides, integrator and output settings.
+//
+// Checks, in this order, each error naming the scene file, the YAML line and the key (exit 2):
+//   1. the schema (types, ranges: a penalty factor <= 0 is rejected here),
+//   2. names: unique body names, contact pairs naming known and distinct bodies,
+//   3. SID files: a relative name resolves against the scene file's folder, then against
+//      each --sid-path folder in turn; the first existing file is used,
+//   4. the SIDs themselves (loaded by the SidLoader given by the caller, e.g. readSid of
+//      common/sid_file.h; its InputError gets the scene's file, line and key prepended),
+//   5. consistency: bodies of one kind per scene, sizes of q / qdot, axisymmetric bodies on
+//      the y axis, contact surfaces present.
+// Initial velocity and angular velocity are given in inertial components and converted to
+// the body components of the state (Eq. 1).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/sid.h"
+#include "common/yaml_input.h"
+#include "runtime/multibody_system.h"
+#include "runtime/simulation.h"
+
+namespace ffriga {
+
+using SidLoader = std::function<FlexibleBodySid(const std::string& path)>;
+
+struct Scene {
+  YamlDocument doc;
+  std::string name;
+  std::unique_ptr<MultibodySystem> system;
+  Eigen::VectorXd y0;
+  SimulationSettings settings;
+  int flush_rows = 16;
+  std::vector<std::string> sid_files;  // resolved path of each body's SID
+};
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& sid_paths,
+                const SidLoader& load_sid);
+
+// The same for a document already in memory (tests); relative SID names resolve against
+// the folder of doc.path.
+Scene buildScene(YamlDocument doc, const std::vector<std::string>& sid_paths,
+                 const SidLoader& load_sid);
+
+}  // namespace ffriga

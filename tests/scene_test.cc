@@ -1,0 +1,268 @@
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "common/gauss_legendre.h"
+#include "common/json_schema.h"
+#include "common/refinement.h"
+#include "common/schemas.h"
+#include "runtime/scene.h"
+#include "surface_fixtures.h"
+
+using namespace ffriga;
+
+namespace {
+
+// Rigid axisymmetric sphere of radius R (steel): meridian half circle from the bottom pole
+// to the top pole (rational quadratic, paper Eq. 19 style), refined near the top pole where
+// contact happens. Collocation points at the Greville abscissae with weights = arc-length
+// integrals of the basis functions (Gauss quadrature), the meridian weights of sid.h.
+FlexibleBodySid rigidSphere2d(double R) {
+  const double h = 1.0 / std::sqrt(2.0);
+  Eigen::MatrixXd P(5, 2);
+  P << 0, -R, R, -R, R, 0, R, R, 0, R;
+  Eigen::VectorXd w(5);
+  w << 1, h, 1, h, 1;
+  NurbsPatch arc({KnotVector({0, 0, 0, 0.5, 0.5, 1, 1, 1}, 2)}, P, w);
+  std::vector<double> X;
+  for (int k = 1; k < 40; ++k) X.push_back(0.96 + 0.001 * k);
+  arc = insertKnots(arc, 0, X);
+  FlexibleBodySid sid;
+  sid.name = "sphere";
+  sid.model = "axisymmetric";
+  sid.space_dim = 2;
+  sid.mass = 7850.0 * 4.0 / 3.0 * M_PI * R * R * R;
+  sid.inertia = Eigen::Matrix3d::Identity() * 0.4 * sid.mass * R * R;
+  sid.Me = sid.Ke = sid.De = Eigen::MatrixXd(0, 0);
+  sid.Ct = sid.Cr0 = Eigen::MatrixXd(0, 3);
+  sid.control_points = arc.points();
+  sid.weights = arc.weights();
+  sid.Phi = Eigen::MatrixXd(2 * arc.numControlPoints(), 0);
+  ContactSurface s = test::bezierExtract(arc, 1.0);
+  test::addGrevilleCollocation(arc, s, 0.0);
+  const ExtractedSurface surf(s, arc.weights());
+  Eigen::VectorXd integral = Eigen::VectorXd::Zero(arc.numControlPoints());
+  for (int e = 0; e < surf.numElements(); ++e) {
+    const QuadratureRule g = gaussLegendre(6, surf.elementLower(e)(0), surf.elementUpper(e)(0));
+    for (std::size_t i = 0; i < g.points.size(); ++i) {
+      SurfacePoint sp;
+      Eigen::MatrixXd Rb;
+      surf.evaluate(e, &g.points[i], arc.points(), 1, sp);
+      surf.basis(e, &g.points[i], 0, Rb);
+      for (int k = 0; k < surf.numFunctions(e); ++k)
+        integral(surf.functions(e)[k]) += Rb(0, k) * sp.dx.norm() * g.weights[i];
+    }
+  }
+  s.collocation_weights = integral;
+  sid.surfaces.push_back(s);
+  return sid;
+}
+
+// The rigid sphere made flexible with nq synthetic modes (timing and balance tests, not a
+// physical model): mode j moves the surface control points near the top pole with a smooth
+// random pattern; Me = E, Ke = diag(omega_j^2) with omega from 2e5 to 2e7 rad/s, modal
+// damping 2 %, Ct = 0 (Buckens-like), so M = diag(m, E).
+FlexibleBodySid flexibleSphere2d(double R, int nq) {
+  FlexibleBodySid sid = rigidSphere2d(R);
+  const int ncp = static_cast<int>(sid.control_points.rows());
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(2 * ncp, nq);
+  std::srand(7);
+  for (int k = 0; k < ncp; ++k) {
+    const double y = sid.control_points(k, 1);
+    if (y < 0.9 * R) continue;
+    for (int j = 0; j < nq; ++j) {
+      // Axial and radial displacements; zero radial motion on the axis.
+      Phi(2 * k + 1, j) = 1e-3 * std::cos(0.7 * j * (R - y) / R * 40.0) * std::rand() / RAND_MAX;
+      if (sid.control_points(k, 0) > 0.0) Phi(2 * k, j) = 0.3 * Phi(2 * k + 1, j);
+    }
+  }
+  Eigen::VectorXd omega = Eigen::VectorXd::LinSpaced(nq, std::log(2e5), std::log(2e7));
+  omega = omega.array().exp();
+  sid.Phi = Phi;
+  sid.Me = Eigen::MatrixXd::Identity(nq, nq);
+  sid.Ke = omega.array().square().matrix().asDiagonal();
+  sid.De = (0.04 * omega).asDiagonal();
+  sid.Ct = Eigen::MatrixXd::Zero(nq, 3);
+  sid.frequencies_hz = omega / (2 * M_PI);
+  return sid;
+}
+
+// Writes empty placeholder files so that SID resolution finds them; the loader maps the
+// resolved path to an in-memory SID.
+SidLoader fakeLoader(const FlexibleBodySid& sid) {
+  for (const char* f : {"sphere_a.sid.h5", "sphere_b.sid.h5"}) std::ofstream(f) << "fake";
+  return [sid](const std::string&) { return sid; };
+}
+
+const char* kScene = R"(name: rigid_spheres
+bodies:
+  - name: lower
+    sid: sphere_a.sid.h5
+    position: [0, 0, 0]
+    velocity: [0, 0.1, 0]
+  - name: upper
+    sid: sphere_b.sid.h5
+    position: [0, 0.02001, 0]
+    orientation: [0, 1, 0, 0]
+    velocity: [0, -0.1, 0]
+contacts:
+  - bodies: [lower, upper]
+    penalty_factor: 1.0e13
+integrator:
+  end_time: 6.0e-4
+  output_interval: 1.0e-5
+  rtol: 1.0e-8
+)";
+
+double runSpheres(const FlexibleBodySid& sid, double endTime, double rtol, SimulationReport& r) {
+  std::string text = kScene;
+  Scene scene = buildScene(parseYamlText(text, "scene.yaml"), {}, fakeLoader(sid));
+  scene.settings.verbosity = 0;
+  scene.settings.end_time = endTime;
+  scene.settings.integrator.rtol = rtol;
+  const std::string path = "scene_test_flexible.h5";
+  ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
+  r = simulate(*scene.system, scene.y0, scene.settings, writer);
+  writer.close();
+  std::remove(path.c_str());
+  return r.wall_time_s;
+}
+
+std::string errorOf(const std::string& text, const FlexibleBodySid& sid) {
+  try {
+    buildScene(parseYamlText(text, "scene.yaml"), {}, fakeLoader(sid));
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t pos = s.find(from);
+  REQUIRE(pos != std::string::npos);
+  return s.replace(pos, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  Scene scene = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
+  REQUIRE(scene.system->numBodies() == 2);
+  REQUIRE(scene.system->numContacts() == 1);
+  scene.settings.verbosity = 0;
+  const std::string path = "scene_test_result.h5";
+  ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
+  const SimulationReport r = simulate(*scene.system, scene.y0, scene.settings, writer);
+  writer.close();
+  REQUIRE(r.completed);
+  REQUIRE(r.max_normal_force > 0.0);
+  REQUIRE(r.during.steps > 0);
+  REQUIRE(r.after.steps > 0);
+  // The final state: velocities exchanged (equal masses, conservative penalty force, no
+  // damping), linear momentum zero throughout (equal and opposite forces).
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  REQUIRE(f.id() >= 0);
+  REQUIRE(h5::readStringAttribute(f.id(), "status", path) == "completed");
+  auto lastRow = [&](const std::string& name, int cols) {
+    h5::Handle ds(H5Dopen2(f.id(), name.c_str(), H5P_DEFAULT), H5Dclose);
+    h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
+    hsize_t dims[2] = {0, 1};
+    H5Sget_simple_extent_dims(space.id(), dims, nullptr);
+    std::vector<double> all(dims[0] * cols);
+    H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data());
+    return std::vector<double>(all.end() - cols, all.end());
+  };
+  // Body-frame velocities: the upper sphere is turned (axis along -y), so V = -v_y.
+  const double vLower = lastRow("bodies/lower/velocity", 3)[1];
+  const double vUpper = -lastRow("bodies/upper/velocity", 3)[1];
+  const double fEnd = lastRow("contacts/lower-upper/normal_force", 1)[0];
+  INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", final V " << vLower
+                    << ", " << vUpper << " wall " << r.wall_time_s);
+  REQUIRE(fEnd == 0.0);
+  // Momentum: BDF keeps linear invariants exactly up to the Newton tolerance; 1e-9 m/s.
+  REQUIRE(std::abs(vLower + vUpper) < 1e-9);
+  // Energy: integration error of rtol 1e-8 over ~400 steps through a stiff contact; the
+  // penalty force is conservative, so the rebound speed is the impact speed to 1e-4.
+  REQUIRE(std::abs(vLower + 0.1) < 1e-5);
+  f.reset();
+  std::remove(path.c_str());
+}
+
+TEST_CASE("scene: flexible axisymmetric spheres collide and separate", "[scene]") {
+  SimulationReport r;
+  runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, r);
+  INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", wall "
+                    << r.wall_time_s << " s");
+  REQUIRE(r.completed);
+  REQUIRE(r.max_normal_force > 0.0);
+  REQUIRE(r.after.steps > 0);
+}
+
+// Timing of a paper-sized model (nq = 92 per body): run by hand with
+//   unit_tests "[.benchmark]" -s
+TEST_CASE("benchmark: flexible axisymmetric spheres, nq = 92", "[.benchmark]") {
+  SimulationReport r;
+  runSpheres(flexibleSphere2d(0.01, 92), 6.0e-4, 1e-6, r);
+  WARN("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", rhs "
+                    << r.stats.rhs_evals << ", jacobians " << r.stats.jacobian_evals << ", setups "
+                    << r.stats.linear_setups << ", wall " << r.wall_time_s << " s (before "
+                    << r.before.wall_s << ", during " << r.during.wall_s << ", after "
+                    << r.after.wall_s << ")");
+}
+
+TEST_CASE("scene: bad input names file, line and key", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  CHECK(errorOf(kScene, sid) == "no error");
+  CHECK_THAT(errorOf(replace(kScene, "bodies: [lower, upper]", "bodies: [lower, uper]"), sid),
+             Catch::Contains("scene.yaml:13: key 'contacts[0].bodies[1]'") &&
+                 Catch::Contains("found 'uper'"));
+  CHECK_THAT(errorOf(replace(kScene, "penalty_factor: 1.0e13", "penalty_factor: -1.0e13"), sid),
+             Catch::Contains("scene.yaml:14: key 'contacts[0].penalty_factor'"));
+  CHECK_THAT(errorOf(replace(kScene, "sid: sphere_b.sid.h5", "sid: nowhere.sid.h5"), sid),
+             Catch::Contains("scene.yaml:8: key 'bodies[1].sid'") &&
+                 Catch::Contains("SID file 'nowhere.sid.h5' not found"));
+  CHECK_THAT(errorOf(replace(kScene, "position: [0, 0, 0]", "position: [0.1, 0, 0]"), sid),
+             Catch::Contains("key 'bodies[0].position'"));
+}
+
+TEST_CASE("scene: every scene in configs/scenes satisfies the schema", "[scene]") {
+  int n = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(FFRIGA_SOURCE_DIR) + "/configs/scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    INFO(entry.path());
+    const JsonSchema schema(kSceneSchema, "scene.schema.json");
+    REQUIRE_NOTHROW(schema.validate(loadYamlFile(entry.path().string())));
+    ++n;
+  }
+  REQUIRE(n >= 8);
+}
+
+TEST_CASE("scene: SID names resolve against the scene folder, then each --sid-path", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  std::filesystem::create_directories("sid_path_test/first");
+  std::filesystem::create_directories("sid_path_test/second");
+  std::ofstream("sid_path_test/second/path_a.sid.h5") << "fake";
+  std::ofstream("sid_path_test/first/path_b.sid.h5") << "fake";
+  // Own file names: other scene tests (maybe running in parallel) write sphere_?.sid.h5.
+  const std::string text = replace(replace(kScene, "sphere_a", "path_a"), "sphere_b", "path_b");
+  // The scene "lives" in sid_path_test/, which holds neither file itself.
+  const Scene scene = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
+                                 {"sid_path_test/first", "sid_path_test/second"},
+                                 [&](const std::string&) { return sid; });
+  REQUIRE(scene.sid_files[0] == "sid_path_test/second/path_a.sid.h5");
+  REQUIRE(scene.sid_files[1] == "sid_path_test/first/path_b.sid.h5");
+  // A file next to the scene wins over the search path.
+  std::ofstream("sid_path_test/path_a.sid.h5") << "fake";
+  const Scene again = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
+                                 {"sid_path_test/first", "sid_path_test/second"},
+                                 [&](const std::string&) { return sid; });
+  REQUIRE(again.sid_files[0] == "sid_path_test/path_a.sid.h5");
+  std::filesystem::remove_all("sid_path_test");
+}
