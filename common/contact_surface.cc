@@ -18,14 +18,15 @@ Eigen::MatrixXd bezierExtraction1d(const KnotVector& U, int span) {
   const int p = U.degree();
   const double lo = U[span], hi = U[span + 1];
   Eigen::MatrixXd Vb(p + 1, p + 1), Vn(p + 1, p + 1);
-  double N[kMaxDegree + 1], Bern[3 * (kMaxDegree + 1)];
+  double N[kMaxDegree + 1];
+  Eigen::MatrixXd Bern;
   for (int m = 0; m <= p; ++m) {
     const double t = p == 0 ? 0.5 : static_cast<double>(m) / p;
     basisFunctions(U, span, lo + t * (hi - lo), N);
-    bernsteinDerivatives(p, t, 0, Bern);
+    bernsteinBasis(p, t, 0, Bern);
     for (int j = 0; j <= p; ++j) {
       Vn(m, j) = N[j];
-      Vb(m, j) = Bern[j];
+      Vb(m, j) = Bern(0, j);
     }
   }
   // Vn = Vb M^T.
@@ -121,7 +122,7 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
     cs.function_offsets.push_back(static_cast<int>(cs.functions.size()));
   }
 
-  const ExtractedSurface surf(cs, space.controlPoints(), space.weights());
+  const ExtractedSurface surf(cs, space.weights());
   // Outward sign at the centre of the first element.
   {
     const int e = elems[0];
@@ -131,7 +132,8 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
     for (int a = 0; a < dc; ++a) s[a] = xi[sd[a]];
     const PatchPoint vp = space.evaluate(xi, 1);
     const Eigen::VectorXd out = (side == 1 ? 1.0 : -1.0) * vp.dx.col(dir);
-    const PatchPoint sp = surf.evaluate(0, s, 1);
+    SurfacePoint sp;
+    surf.evaluate(0, s, space.controlPoints(), 1, sp);
     Eigen::VectorXd n(sp.x.size());
     if (dc == 2) {
       n = Eigen::Vector3d(sp.dx.col(0)).cross(Eigen::Vector3d(sp.dx.col(1)));
@@ -153,14 +155,13 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
   // Polynomial trace of local function r of element i at s, with derivatives (rows as
   // rational_basis.h), from the Bernstein form.
   auto trace = [&](int i, int r, const double* s, int order, Eigen::VectorXd& v) {
-    double ders[2][3 * (kMaxDegree + 1)];
+    Eigen::MatrixXd ders[2];
     double scale[2] = {1, 1};
     int nb[2] = {1, 1};
     for (int a = 0; a < dc; ++a) {
       scale[a] = 1.0 / (cs.element_upper(i, a) - cs.element_lower(i, a));
       nb[a] = cs.degrees[a] + 1;
-      bernsteinDerivatives(cs.degrees[a], (s[a] - cs.element_lower(i, a)) * scale[a], order,
-                           ders[a]);
+      bernsteinBasis(cs.degrees[a], (s[a] - cs.element_lower(i, a)) * scale[a], order, ders[a]);
     }
     const int rowsN = numDerivativeRows(dc, order);
     v = Eigen::VectorXd::Zero(rowsN);
@@ -170,7 +171,7 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
         const double c = E(r, j0 + nb[0] * j1);
         if (c == 0.0) continue;
         auto D = [&](int a, int k, int j) {
-          return a < dc ? ders[a][k * nb[a] + j] * std::pow(scale[a], k) : 1.0;
+          return a < dc ? ders[a](k, j) * std::pow(scale[a], k) : 1.0;
         };
         v(0) += c * D(0, 0, j0) * D(1, 0, j1);
         if (order >= 1) {
@@ -187,7 +188,7 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
       }
   };
   Eigen::VectorXd v;
-  PatchBasis R;
+  Eigen::MatrixXd R;
   for (int i = 0; i < ne; ++i) {
     const int f0 = cs.function_offsets[i], f1 = cs.function_offsets[i + 1];
     // Weights: Gauss-Legendre with p + 3 points per direction.
@@ -201,14 +202,15 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
       for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0) {
         const double s[2] = {q[0].points[g0], q[1].points[g1]};
         surf.basis(i, s, 1, R);
-        Eigen::MatrixXd P(R.index.size(), space.spaceDim());
-        for (int c = 0; c < P.rows(); ++c) P.row(c) = space.controlPoints().row(R.index[c]);
-        const Eigen::MatrixXd X = R.table.middleRows(1, dc) * P;  // dc x s
+        const int* fn = surf.functions(i);
+        Eigen::MatrixXd P(R.cols(), space.spaceDim());
+        for (int c = 0; c < P.rows(); ++c) P.row(c) = space.controlPoints().row(fn[c]);
+        const Eigen::MatrixXd X = R.middleRows(1, dc) * P;  // dc x s
         const double J = dc == 2 ? Eigen::Vector3d(X.row(0)).cross(Eigen::Vector3d(X.row(1))).norm()
                                  : X.row(0).norm();
         const double wq = q[0].weights[g0] * q[1].weights[g1] * J;
-        for (int c = 0; c < R.table.cols(); ++c)
-          cs.collocation_weights(colloc[R.index[c]]) += wq * R.table(0, c);
+        for (int c = 0; c < R.cols(); ++c)
+          cs.collocation_weights(colloc[surf.functions(i)[c]]) += wq * R(0, c);
       }
     // Botella points: sampling, then projected Newton on this element's polynomial.
     const int ns = 4 * (*std::max_element(cs.degrees.begin(), cs.degrees.end()) + 1);

@@ -187,5 +187,4 @@ class HierarchicalSpace : public SplineSpace {
   Eigen::VectorXd weights_;
 };
 
-
 }  // namespace ffriga

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <set>
 
+#include "common/contact_surface.h"
 #include "common/error.h"
 #include "common/version.h"
-#include "common/contact_surface.h"
 #include "preproc/contact_region.h"
 #include "preproc/craig_bampton.h"
 #include "preproc/dof_map.h"

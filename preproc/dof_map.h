@@ -54,5 +54,4 @@ class DofMap {
   std::vector<int> dof_;
 };
 
-
 }  // namespace ffriga

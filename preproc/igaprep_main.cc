@@ -7,16 +7,14 @@
 // Pipeline (preproc/body_reduction.h): geometry and global refinement, elasticity
 // assembly, Craig-Bampton or modal reduction in a Buckens or tangent frame, SID invariants,
 // contact surface and markers, then the SID file (common/sid_file.h), written atomically.
+//
+// Without -o: the geometry summary: degrees, elements and control points per direction,
+// per hierarchy level the elements and active functions, and the displacement DOFs
+//   ndof = s * (active functions - points tied to a coincident one of the same level)
+//          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
 #include <sys/resource.h>
 
 #include <chrono>
-// Reads the body file (schemas/body.schema.json), builds the exact NURBS patch, applies
-// the global refinement (degree elevation, then uniform and explicit knot insertion) and
-// the hierarchical refinement, and prints a summary: degrees, elements and control points
-// per direction, per hierarchy level the elements and active functions, coincident
-// control points and the displacement DOFs:
-//   ndof = s * (active functions - points tied to a coincident one of the same level)
-//          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
 #include <cstdio>
 #include <iostream>
 
@@ -32,10 +30,12 @@ constexpr const char* kUsage = R"(usage: igaprep BODY.yaml -o BODY.sid.h5 [optio
        igaprep BODY.yaml [options]
        igaprep --info FILE.sid.h5
 
-Builds the exact NURBS model of a flexible body from its body file, refines it
-globally (degree elevation, uniform then explicit knot insertion) and hierarchically
-(section 'hierarchy'); prints degrees, elements and control points per parametric
-direction, elements and active functions per hierarchy level, and the DOFs.
+Builds the reduced flexible body of a body file: exact NURBS geometry, global refinement
+(degree elevation, uniform then explicit knot insertion), hierarchical refinement
+(section 'hierarchy', THB by default), linear elastic assembly, Craig-Bampton or modal
+reduction in a Buckens or tangent floating frame, the SID invariants, the contact surface
+with its collocation points and the markers, written to one HDF5 file
+(schemas/sid_format.md). Without -o, prints the refined geometry and hierarchy only.
 
 options:
   -o, --output FILE  write the SID file (atomically: nothing is left behind on failure)
@@ -79,22 +79,8 @@ void printGeometry(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch,
     std::printf("  %-9s %7d %9d %15d\n", kDirectionNames[a], patch.degree(a),
                 patch.knots(a).numElements(), patch.numBasis(a));
   }
-  std::printf("  %-9s %7s %9d %15d\n", "total", "", patch.numElements(), patch.numControlPoints());
-  const double size =
-      (patch.points().colwise().maxCoeff() - patch.points().colwise().minCoeff()).maxCoeff();
-  const auto groups = ffriga::coincidentControlPoints(patch, 1e-12 * size);
-  int tied = 0;
-  for (const auto& g : groups) tied += static_cast<int>(g.size()) - 1;
-  std::printf("  coincident control points: %zu groups (%d points tied to another)\n",
-              groups.size(), tied);
-  if (c.model == ffriga::BodyModel::kAxisymmetric) {
-    int onAxis = 0;
-    for (int k = 0; k < patch.numControlPoints(); ++k)
-      onAxis += patch.points()(k, 0) <= 1e-12 * size;
-    std::printf("  control points on the axis (u_r = 0): %d\n", onAxis);
-  }
-  std::printf("  displacement DOFs before tying: %d\n",
-              patch.numControlPoints() * patch.spaceDim());
+  std::printf("  %-9s %7s %9d %15d   (level 0)\n", "total", "", patch.numElements(),
+              patch.numControlPoints());
   if (verbosity >= 2) {
     for (int a = 0; a < d; ++a) {
       std::printf("  knots %s:", kDirectionNames[a]);
@@ -102,6 +88,35 @@ void printGeometry(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch,
       std::printf("\n");
     }
   }
+}
+
+void printHierarchy(const ffriga::BodyConfig& c, const ffriga::HierarchicalSpace& space) {
+  const int s = space.spaceDim();
+  if (c.global_reference) {
+    std::printf(
+        "  global reference of a %d-level hierarchy: knot lines of every level inserted "
+        "across the domain\n",
+        c.hierarchy.levels);
+  }
+  std::printf("  hierarchy  %d level(s), %s\n", space.numLevels(),
+              space.truncated() ? "truncated (THB)" : "non-truncated (HB)");
+  std::printf("  %-6s %9s %18s  %s\n", "level", "elements", "active functions", "region");
+  for (int l = 0; l < space.numLevels(); ++l) {
+    std::printf("  %-6d %9d %18d  ", l, space.numElementsOnLevel(l), space.numFunctionsOnLevel(l));
+    const ffriga::ParamBox box = space.region(l);
+    for (int a = 0; a < space.paramDim(); ++a)
+      std::printf("%s[%.9g, %.9g]", a ? " x " : "", box.lower[a], box.upper[a]);
+    std::printf("\n");
+  }
+  std::printf("  %-6s %9d %18d\n", "total", space.numElements(), space.numFunctions());
+  const ffriga::DofCount n = ffriga::countDofs(space, c.model);
+  std::printf("  coincident control points: %d groups (%d points tied to another)\n", n.groups,
+              n.tied);
+  if (c.model == ffriga::BodyModel::kAxisymmetric) {
+    std::printf("  distinct control points on the axis (u_r = 0): %d\n", n.on_axis);
+  }
+  std::printf("  displacement DOFs: %d x %d functions = %d before tying; ndof = %d\n", s,
+              space.numFunctions(), s * space.numFunctions(), n.ndof);
 }
 
 void printSidSummary(const ffriga::FlexibleBodySid& s, const std::string& path) {

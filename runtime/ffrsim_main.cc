@@ -11,6 +11,7 @@
 
 #include "common/cli.h"
 #include "common/version.h"
+#include "runtime/hertz_reference.h"
 #include "runtime/result_writer.h"
 #include "runtime/scene.h"
 #include "runtime/simulation.h"
@@ -67,8 +68,30 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
   for (int i = 0; i < 3; ++i)
     std::printf("  %-16s %10.3f %8ld %10ld\n", names[i], p[i]->wall_s, p[i]->steps,
                 p[i]->rhs_evals);
-  if (scene.system->numContacts() > 0)
-    std::printf("  maximum contact force %.6g N (at the steps)\n", r.max_normal_force);
+  if (scene.system->numContacts() > 0) {
+    std::printf("  maximum contact force %.6g N (over the steps and pairs)\n", r.max_normal_force);
+  }
+  if (r.contact_begin >= 0.0) {
+    const double end = r.contact_end >= 0.0 ? r.contact_end : r.final_time;
+    std::printf("  contact from %.4g us to %.4g us%s: duration %.4g us\n", 1e6 * r.contact_begin,
+                1e6 * end, r.contact_end >= 0.0 ? "" : " (still in contact)",
+                1e6 * (end - r.contact_begin));
+  }
+  for (int c = 0; c < scene.system->numContacts(); ++c) {
+    const auto h = ffriga::hertzReference(scene, c);
+    if (!h) continue;
+    std::printf("  Hertz (approach speed %.4g m/s): maximum force %.6g N, duration %.4g us\n",
+                h->approach_speed, h->impact.max_force, 1e6 * h->impact.duration);
+    if (scene.system->numContacts() == 1) {
+      std::printf("  simulation / Hertz: force %+.2f %%",
+                  100.0 * (r.max_normal_force / h->impact.max_force - 1.0));
+      if (r.contact_begin >= 0.0 && r.contact_end >= 0.0) {
+        std::printf(", duration %+.2f %%",
+                    100.0 * ((r.contact_end - r.contact_begin) / h->impact.duration - 1.0));
+      }
+      std::printf("\n");
+    }
+  }
 }
 
 }  // namespace

@@ -9,10 +9,6 @@ hid_t check(hid_t status, const std::string& what, const std::string& file) {
   return status;
 }
 
-void silenceErrors() {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
-
 namespace {
 
 void removeIfPresent(hid_t obj, const std::string& name, const std::string& file) {

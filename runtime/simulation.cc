@@ -96,6 +96,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
     BdfIntegrator integ(system, 0.0, y, settings.integrator);
     integ.setStopTime(settings.end_time);
     IntegratorStats last;
+    double tPrev = t;
     while (t < settings.end_time && nextOut <= nOut) {
       if (interruptRequested()) {
         report.interrupted = true;
@@ -114,10 +115,13 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       Eigen::VectorXd yt;
       integ.interpolate(t, yt);
       const bool contact = activePoints(system, yt, &report.max_normal_force) > 0;
+      if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
+      if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
       if (contact)
         phase = 1;
       else if (phase == 1)
         phase = 2;
+      tPrev = t;
       const IntegratorStats now = integ.stats();
       PhaseStats& ps = phase == 0 ? report.before : phase == 1 ? report.during : report.after;
       const Clock::time_point s1 = Clock::now();

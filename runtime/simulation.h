@@ -41,7 +41,12 @@ struct SimulationReport {
   double wall_time_s = 0.0;
   IntegratorStats stats;
   PhaseStats before, during, after;
-  double max_normal_force = 0.0;  // N, over the output rows and contact pairs
+  double max_normal_force = 0.0;  // N, over the steps and contact pairs
+  // Contact duration, from the first to the last step with an active contact point: each
+  // end is the midpoint between the last step without and the first step with contact
+  // (s; negative when there was no contact).
+  double contact_begin = -1.0;
+  double contact_end = -1.0;
 };
 
 // SIGINT handling: the first Ctrl-C requests a stop (checked between steps).

@@ -160,17 +160,17 @@ TEST_CASE("solid contact surface: traces, weights, collocation", "[contact]") {
 
 TEST_CASE("Bernstein derivatives", "[contact]") {
   // Central differences of the values (step 1e-6: error ~1e-10 for degree <= 4).
-  double d0[15], dp[15], dm[15];
+  Eigen::MatrixXd d0, dp, dm;
   for (int p = 0; p <= 4; ++p) {
     const double t = 0.37, h = 1e-6;
-    bernsteinDerivatives(p, t, 2, d0);
-    bernsteinDerivatives(p, t + h, 1, dp);
-    bernsteinDerivatives(p, t - h, 1, dm);
+    bernsteinBasis(p, t, 2, d0);
+    bernsteinBasis(p, t + h, 1, dp);
+    bernsteinBasis(p, t - h, 1, dm);
     double sum = 0;
     for (int b = 0; b <= p; ++b) {
-      sum += d0[b];
-      CHECK(d0[(p + 1) + b] == Approx((dp[b] - dm[b]) / (2 * h)).margin(1e-8));
-      CHECK(d0[2 * (p + 1) + b] == Approx((dp[p + 1 + b] - dm[p + 1 + b]) / (2 * h)).margin(1e-6));
+      sum += d0(0, b);
+      CHECK(d0(1, b) == Approx((dp(0, b) - dm(0, b)) / (2 * h)).margin(1e-8));
+      CHECK(d0(2, b) == Approx((dp(1, b) - dm(1, b)) / (2 * h)).margin(1e-6));
     }
     CHECK(sum == Approx(1.0).epsilon(1e-15));  // partition of unity
   }

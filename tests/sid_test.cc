@@ -224,4 +224,3 @@ TEST_CASE("readSid and writeSid report bad files clearly", "[sid]") {
   FlexibleBodySid empty;
   CHECK_THROWS_AS(writeSid(empty, "no_such_dir/x.sid.h5"), ComputeError);
 }
-
