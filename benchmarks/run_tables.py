@@ -46,7 +46,7 @@ TARGET_S = {(2, "h"): 2, (2, "ref"): 2, (3, "h"): 30, (3, "ref"): 600}
 
 def paper_key(path):
     name = os.path.basename(path)
-    m = re.match(r"sphere([23])d_(h|ref|global)(\d)", name)
+    m = re.match(r"sphere([23])d_(h|g|ref|global)(\d)", name)
     if not m:
         return None
     kind = "h" if m.group(2) == "h" else "ref"
