@@ -7,23 +7,6 @@
 
 using namespace ffriga;
 
-namespace {
-
-NurbsPatch randomPatch(int d, int s) {
-  std::vector<KnotVector> U;
-  int n = 1;
-  for (int a = 0; a < d; ++a) {
-    U.push_back(test::randomKnots(test::uniformInt(1, 4), test::uniformInt(0, 3)));
-    n *= U.back().numBasis();
-  }
-  Eigen::MatrixXd P = Eigen::MatrixXd::Random(n, s);
-  Eigen::VectorXd w(n);
-  for (int k = 0; k < n; ++k) w(k) = test::uniform(0.3, 2.0);
-  return NurbsPatch(U, P, w);
-}
-
-}  // namespace
-
 TEST_CASE("Bernstein basis: partition of unity and derivatives", "[surface]") {
   Eigen::MatrixXd B, Bp, Bm;
   for (int p = 0; p <= 5; ++p) {
@@ -41,7 +24,7 @@ TEST_CASE("Bernstein basis: partition of unity and derivatives", "[surface]") {
 TEST_CASE("extracted surface reproduces the NURBS patch with derivatives", "[surface]") {
   for (int d = 1; d <= 2; ++d) {
     for (int trial = 0; trial < 10; ++trial) {
-      const NurbsPatch patch = randomPatch(d, d + 1);
+      const NurbsPatch patch = test::randomPatch(d, d + 1);
       const ContactSurface cs = test::bezierExtract(patch);
       const ExtractedSurface surf(cs, patch.weights());
       for (int k = 0; k < 20; ++k) {

@@ -8,28 +8,10 @@
 
 using namespace ffriga;
 
-namespace {
-
-// Random NURBS patch with d parametric directions in s-dimensional space.
-NurbsPatch randomPatch(int d, int s) {
-  std::vector<KnotVector> U;
-  int n = 1;
-  for (int a = 0; a < d; ++a) {
-    U.push_back(test::randomKnots(test::uniformInt(1, 4), test::uniformInt(0, 3)));
-    n *= U.back().numBasis();
-  }
-  Eigen::MatrixXd P = Eigen::MatrixXd::Random(n, s);
-  Eigen::VectorXd w(n);
-  for (int k = 0; k < n; ++k) w(k) = test::uniform(0.3, 2.0);
-  return NurbsPatch(U, P, w);
-}
-
-}  // namespace
-
 TEST_CASE("rational basis: partition of unity, derivatives sum to zero", "[nurbs]") {
   for (int d = 1; d <= 3; ++d) {
     for (int trial = 0; trial < 10; ++trial) {
-      const NurbsPatch patch = randomPatch(d, 3);
+      const NurbsPatch patch = test::randomPatch(d, 3);
       PatchBasis R;
       for (int k = 0; k < 20; ++k) {
         double xi[3] = {test::uniform(), test::uniform(), test::uniform()};
@@ -49,7 +31,7 @@ TEST_CASE("rational basis: partition of unity, derivatives sum to zero", "[nurbs
 TEST_CASE("patch derivatives agree with finite differences", "[nurbs]") {
   for (int d = 1; d <= 3; ++d) {
     for (int trial = 0; trial < 10; ++trial) {
-      const NurbsPatch patch = randomPatch(d, 3);
+      const NurbsPatch patch = test::randomPatch(d, 3);
       for (int k = 0; k < 10; ++k) {
         double xi[3] = {test::uniform(0.1, 0.9), test::uniform(0.1, 0.9), test::uniform(0.1, 0.9)};
         const PatchPoint pt = patch.evaluate(xi, 2);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/knot_vector.h"
+#include "common/nurbs_patch.h"
 
 namespace ffriga::test {
 
@@ -34,6 +35,21 @@ inline KnotVector randomKnots(int p, int interior, double a = 0.0, double b = 1.
   }
   U.insert(U.end(), p + 1, b);
   return KnotVector(U, p);
+}
+
+// Random NURBS patch with d parametric directions in s-dimensional space: degrees 1..4,
+// 0..3 interior knots per direction, coordinates in [-1, 1], weights in [0.3, 2].
+inline NurbsPatch randomPatch(int d, int s) {
+  std::vector<KnotVector> U;
+  int n = 1;
+  for (int a = 0; a < d; ++a) {
+    U.push_back(randomKnots(uniformInt(1, 4), uniformInt(0, 3)));
+    n *= U.back().numBasis();
+  }
+  Eigen::MatrixXd P = Eigen::MatrixXd::Random(n, s);
+  Eigen::VectorXd w(n);
+  for (int k = 0; k < n; ++k) w(k) = uniform(0.3, 2.0);
+  return NurbsPatch(U, P, w);
 }
 
 }  // namespace ffriga::test
