@@ -11,44 +11,75 @@ namespace ffriga {
 Eigen::MatrixXd knotInsertionMatrix(const KnotVector& U, const std::vector<double>& X,
                                     KnotVector* refined) {
   const int p = U.degree();
-  std::vector<double> knots = U.knots();
-  const int n0 = U.numBasis();
-  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(n0, n0);
-  std::vector<double> sorted = X;
-  std::sort(sorted.begin(), sorted.end());
-  for (double u : sorted) {
-    if (!(u >= knots.front() && u <= knots.back())) {
-      throw std::invalid_argument(Str() << "knot " << u << " lies outside the parameter domain ["
-                                        << knots.front() << ", " << knots.back() << "]");
+  const std::vector<double>& u = U.knots();
+  std::vector<double> x = X;
+  std::sort(x.begin(), x.end());
+  // Checks first: inside the domain, interior, final multiplicity at most p.
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    if (!(x[j] >= u.front() && x[j] <= u.back())) {
+      throw std::invalid_argument(Str() << "knot " << x[j] << " lies outside the parameter domain ["
+                                        << u.front() << ", " << u.back() << "]");
     }
-    // Boehm: span k with u_k <= u < u_{k+1} (u = back goes to the last span).
-    const KnotVector current(knots, p);
-    const int k = current.findSpan(u);
-    const int s = current.multiplicity(u);
-    const bool interior = u > knots.front() && u < knots.back();
-    if (!interior) {
-      throw std::invalid_argument(Str() << "knot " << u << " is an end of the domain, where a "
+    if (x[j] == u.front() || x[j] == u.back()) {
+      throw std::invalid_argument(Str() << "knot " << x[j] << " is an end of the domain, where a "
                                         << "clamped knot vector already has full multiplicity");
     }
-    if (s + 1 > p) {
-      throw std::invalid_argument(Str() << "inserting knot " << u << " would give it multiplicity "
-                                        << s + 1 << ", at most the degree " << p << " is allowed");
+    if (j == 0 || x[j] != x[j - 1]) {
+      const int mult =
+          U.multiplicity(x[j]) + static_cast<int>(std::count(x.begin() + j, x.end(), x[j]));
+      if (mult > p) {
+        throw std::invalid_argument(Str()
+                                    << "inserting knot " << x[j] << " would give it multiplicity "
+                                    << mult << ", at most the degree " << p << " is allowed");
+      }
     }
-    const int n = current.numBasis();
-    Eigen::MatrixXd Tn(n + 1, T.cols());
-    // Pbar_i = P_i (i <= k - p), alpha_i P_i + (1 - alpha_i) P_{i-1} (k-p+1 <= i <= k - s),
-    // P_{i-1} (i >= k - s + 1).
-    for (int i = 0; i <= k - p; ++i) Tn.row(i) = T.row(i);
-    for (int i = k - p + 1; i <= k - s; ++i) {
-      const double alpha = (u - knots[i]) / (knots[i + p] - knots[i]);
-      Tn.row(i) = alpha * T.row(i) + (1.0 - alpha) * T.row(i - 1);
-    }
-    for (int i = k - s + 1; i <= n; ++i) Tn.row(i) = T.row(i - 1);
-    T.swap(Tn);
-    knots.insert(knots.begin() + k + 1, u);
   }
-  if (refined) *refined = KnotVector(std::move(knots), p);
-  return T;
+  const int n0 = U.numBasis();
+  if (x.empty()) {
+    if (refined) *refined = U;
+    return Eigen::MatrixXd::Identity(n0, n0);
+  }
+  // Piegl & Tiller A5.4 (RefineKnotVectCurve) applied to the rows of the identity: the
+  // coefficient rows Q of the fine functions, each a combination of the coarse ones.
+  // Row-major, so that every row operation touches contiguous memory.
+  using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const int n = n0 - 1;  // P&T's n: index of the last control point
+  const int m = n + p + 1;
+  const int r = static_cast<int>(x.size()) - 1;
+  const int a = U.findSpan(x.front());
+  const int b = U.findSpan(x.back()) + 1;
+  RowMatrix Q = RowMatrix::Zero(n0 + r + 1, n0);
+  std::vector<double> ubar(u.size() + x.size());
+  for (int j = 0; j <= a - p; ++j) Q(j, j) = 1.0;
+  for (int j = b - 1; j <= n; ++j) Q(j + r + 1, j) = 1.0;
+  for (int j = 0; j <= a; ++j) ubar[j] = u[j];
+  for (int j = b + p; j <= m; ++j) ubar[j + r + 1] = u[j];
+  int i = b + p - 1;
+  int k = b + p + r;
+  for (int j = r; j >= 0; --j) {
+    while (x[j] <= u[i] && i > a) {
+      Q.row(k - p - 1).setZero();
+      Q(k - p - 1, i - p - 1) = 1.0;
+      ubar[k] = u[i];
+      --k;
+      --i;
+    }
+    Q.row(k - p - 1) = Q.row(k - p);
+    for (int l = 1; l <= p; ++l) {
+      const int ind = k - p + l;
+      double alpha = ubar[k + l] - x[j];
+      if (alpha == 0.0) {
+        Q.row(ind - 1) = Q.row(ind);
+      } else {
+        alpha /= ubar[k + l] - u[i - p + l];
+        Q.row(ind - 1) = alpha * Q.row(ind - 1) + (1.0 - alpha) * Q.row(ind);
+      }
+    }
+    ubar[k] = x[j];
+    --k;
+  }
+  if (refined) *refined = KnotVector(std::move(ubar), p);
+  return Q;
 }
 
 Eigen::MatrixXd degreeElevationMatrix(const KnotVector& U, int t, KnotVector* elevated) {
