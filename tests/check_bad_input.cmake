@@ -1,16 +1,21 @@
-# Runs igaprep on every file of tests/bad_input/ and checks the exit code (2) and that the
-# one-line error names the file, the line and, where there is one, the key.
+# Runs PROGRAM on every file of CASES_DIR and checks the exit code (2) and that the one-line
+# error names the file, the line and, where there is one, the key. Used for igaprep (body
+# files, tests/bad_input/) and ffrsim (scenes, tests/bad_scenes/).
 # Each case file starts with a comment line "# expect: TEXT" giving a text the message must
 # contain. Optional lines "# output: yes" (run with -o OUT: the error comes from the
 # pipeline, and no output or temporary file may be left behind) and "# exit: N" (expected
-# exit code, default 2). Also checks a missing file and a usage error.
+# exit code, default 2).
+# Variables: PROGRAM, CASES_DIR, OUT_DIR; ALWAYS_ARGS (appended to every run, '|'-separated);
+# USAGE_ARGS / USAGE_EXPECT (a usage error to check, arguments '|'-separated).
+# Also checks a missing input file.
 file(GLOB cases "${CASES_DIR}/*.yaml")
-set(failures 0)
+string(REPLACE "|" ";" always "${ALWAYS_ARGS}")
 function(expect_error args expected what)
   if(NOT DEFINED expected_rc)
     set(expected_rc 2)
   endif()
-  execute_process(COMMAND ${IGAPREP} ${args} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${PROGRAM} ${args} ${always}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(STRIP "${err}" err)
   string(FIND "${err}" "${expected}" pos)
   string(REGEX MATCHALL "\n" newlines "${err}")
@@ -39,4 +44,7 @@ foreach(case IN LISTS cases)
 endforeach()
 set(expected_rc 2)
 expect_error("${CASES_DIR}/does_not_exist.yaml" "does_not_exist.yaml: cannot open file" "missing file")
-expect_error("--frobnicate" "unknown option '--frobnicate'" "unknown option")
+if(USAGE_ARGS)
+  string(REPLACE "|" ";" usage "${USAGE_ARGS}")
+  expect_error("${usage}" "${USAGE_EXPECT}" "usage error")
+endif()
