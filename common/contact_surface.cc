@@ -202,12 +202,11 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
       for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0) {
         const double s[2] = {q[0].points[g0], q[1].points[g1]};
         surf.basis(i, s, 1, R);
-        const int* fn = surf.functions(i);
-        Eigen::MatrixXd P(R.cols(), space.spaceDim());
-        for (int c = 0; c < P.rows(); ++c) P.row(c) = space.controlPoints().row(fn[c]);
-        const Eigen::MatrixXd X = R.middleRows(1, dc) * P;  // dc x s
-        const double J = dc == 2 ? Eigen::Vector3d(X.row(0)).cross(Eigen::Vector3d(X.row(1))).norm()
-                                 : X.row(0).norm();
+        const Eigen::MatrixXd dx =
+            pointFromTable(R, surf.functions(i), space.controlPoints(), dc, 1).dx;  // s x dc
+        const double J = dc == 2
+                             ? Eigen::Vector3d(dx.col(0)).cross(Eigen::Vector3d(dx.col(1))).norm()
+                             : dx.col(0).norm();
         const double wq = q[0].weights[g0] * q[1].weights[g1] * J;
         for (int c = 0; c < R.cols(); ++c)
           cs.collocation_weights(colloc[surf.functions(i)[c]]) += wq * R(0, c);

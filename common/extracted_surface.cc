@@ -124,14 +124,7 @@ void ExtractedSurface::evaluate(int e, const double* s, const Eigen::MatrixXd& p
                                 SurfacePoint& out) const {
   Eigen::MatrixXd R;
   basis(e, s, order, R);
-  const int sd = static_cast<int>(points.cols());
-  const int n = numFunctions(e);
-  const int* f = functions(e);
-  Eigen::MatrixXd table = Eigen::MatrixXd::Zero(R.rows(), sd);
-  for (int i = 0; i < n; ++i) table += R.col(i) * points.row(f[i]);
-  out.x = table.row(0).transpose();
-  if (order >= 1) out.dx = table.middleRows(1, dim_).transpose();
-  if (order >= 2) out.ddx = table.bottomRows(dim_ * (dim_ + 1) / 2).transpose();
+  out = pointFromTable(R, functions(e), points, dim_, order);
 }
 
 Eigen::VectorXd ExtractedSurface::normal(const Eigen::MatrixXd& dx) const {

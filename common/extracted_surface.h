@@ -19,6 +19,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/nurbs_patch.h"
 #include "common/sid.h"
 
 namespace ffriga {
@@ -27,11 +28,9 @@ namespace ffriga {
 // out(r, i) = d^r/dt^r Bern_{i,p}(t).
 void bernsteinBasis(int p, double t, int order, Eigen::MatrixXd& out);
 
-struct SurfacePoint {
-  Eigen::VectorXd x;    // position (space dimension)
-  Eigen::MatrixXd dx;   // first derivatives, columns d/ds_a
-  Eigen::MatrixXd ddx;  // second derivatives, columns as rational_basis.h rows (a <= b)
-};
+// Point and derivatives w.r.t. the surface parameters (x, dx columns d/ds_a, ddx columns
+// as rational_basis.h rows): the same record as a patch point.
+using SurfacePoint = PatchPoint;
 
 class ExtractedSurface {
  public:

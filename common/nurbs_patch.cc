@@ -155,19 +155,21 @@ void NurbsPatch::basis(const double* xi, int order, PatchBasis& out) const {
   rationalBasisOnSpans(spans, xi, order, out);
 }
 
-PatchPoint NurbsPatch::evaluate(const double* xi, int order) const {
-  PatchBasis R;
-  basis(xi, order, R);
-  const int d = paramDim();
-  const int s = spaceDim();
-  Eigen::MatrixXd P(R.index.size(), s);
-  for (int c = 0; c < P.rows(); ++c) P.row(c) = points_.row(R.index[c]);
-  const Eigen::MatrixXd X = R.table * P;  // rows: derivatives, cols: coordinates
+PatchPoint pointFromTable(const Eigen::MatrixXd& table, const int* functions,
+                          const Eigen::MatrixXd& points, int d, int order) {
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(table.rows(), points.cols());
+  for (int i = 0; i < table.cols(); ++i) X += table.col(i) * points.row(functions[i]);
   PatchPoint pt;
   pt.x = X.row(0).transpose();
   if (order >= 1) pt.dx = X.middleRows(1, d).transpose();
   if (order >= 2) pt.ddx = X.middleRows(1 + d, d * (d + 1) / 2).transpose();
   return pt;
+}
+
+PatchPoint NurbsPatch::evaluate(const double* xi, int order) const {
+  PatchBasis R;
+  basis(xi, order, R);
+  return pointFromTable(R.table, R.index.data(), points_, paramDim(), order);
 }
 
 std::vector<std::vector<int>> coincidentPoints(const Eigen::MatrixXd& P, double tol) {

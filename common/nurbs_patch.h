@@ -73,6 +73,12 @@ class NurbsPatch {
   Eigen::VectorXd weights_;
 };
 
+// Point and derivatives from a basis table (rows as in rational_basis.h, one column per
+// function; d parametric directions, derivatives up to `order`) and the functions' points:
+// X = sum_i table(:, i) points(functions[i], :), split into x, dx and ddx.
+PatchPoint pointFromTable(const Eigen::MatrixXd& table, const int* functions,
+                          const Eigen::MatrixXd& points, int d, int order);
+
 // Tensor-product B-spline basis on one element: given the spans and the parameter,
 // fills the table of all (p0+1)...(pd-1 + 1) non-zero functions (first direction fastest).
 void tensorBasis(const std::vector<KnotVector>& knots, const int* spans, const double* xi,

@@ -7,15 +7,7 @@ namespace ffriga {
 PatchPoint SplineSpace::evaluate(const double* xi, int order) const {
   PatchBasis R;
   elementBasis(findElement(xi), xi, order, R);
-  const int d = paramDim();
-  Eigen::MatrixXd P(R.index.size(), spaceDim());
-  for (int c = 0; c < P.rows(); ++c) P.row(c) = controlPoints().row(R.index[c]);
-  const Eigen::MatrixXd X = R.table * P;
-  PatchPoint pt;
-  pt.x = X.row(0).transpose();
-  if (order >= 1) pt.dx = X.middleRows(1, d).transpose();
-  if (order >= 2) pt.ddx = X.middleRows(1 + d, d * (d + 1) / 2).transpose();
-  return pt;
+  return pointFromTable(R.table, R.index.data(), controlPoints(), paramDim(), order);
 }
 
 TensorSpace::TensorSpace(NurbsPatch patch) : patch_(std::move(patch)) {

@@ -38,12 +38,8 @@ ParamBox faceRegion(const HierarchicalSpace& H, int dir) {
 PatchPoint evaluateSurface(const ContactSurface& cs, const HierarchicalSpace& H, int e,
                            const double* s, int order) {
   const ExtractedSurface surf(cs, H.weights());
-  SurfacePoint sp;
-  surf.evaluate(e, s, H.controlPoints(), order, sp);
   PatchPoint p;
-  p.x = sp.x;
-  p.dx = sp.dx;
-  p.ddx = sp.ddx;
+  surf.evaluate(e, s, H.controlPoints(), order, p);
   return p;
 }
 
