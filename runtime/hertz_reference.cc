@@ -22,14 +22,6 @@ std::optional<HertzSphere> sphereOf(const FlexibleBodySid& sid) {
   }
 }
 
-Eigen::Vector3d vectorOf(const YAML::Node& node) {
-  Eigen::Vector3d v = Eigen::Vector3d::Zero();
-  if (node && node.IsSequence()) {
-    for (std::size_t i = 0; i < node.size() && i < 3; ++i) v(i) = node[i].as<double>();
-  }
-  return v;
-}
-
 }  // namespace
 
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
@@ -39,22 +31,11 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   const auto sa = sphereOf(a.sid());
   const auto sb = sphereOf(b.sid());
   if (!sa || !sb) return std::nullopt;
-  Eigen::Vector3d ra, rb, va, vb;
-  int found = 0;
-  for (const auto& body : scene.doc.root["bodies"]) {
-    const std::string name = body["name"].as<std::string>();
-    if (name == a.name()) {
-      ra = vectorOf(body["position"]);
-      va = vectorOf(body["velocity"]);
-      ++found;
-    }
-    if (name == b.name()) {
-      rb = vectorOf(body["position"]);
-      vb = vectorOf(body["velocity"]);
-      ++found;
-    }
-  }
-  if (found != 2 || (rb - ra).norm() == 0.0) return std::nullopt;
+  const Eigen::Vector3d& ra = scene.initial_position[c.bodyA()];
+  const Eigen::Vector3d& rb = scene.initial_position[c.bodyB()];
+  const Eigen::Vector3d& va = scene.initial_velocity[c.bodyA()];
+  const Eigen::Vector3d& vb = scene.initial_velocity[c.bodyB()];
+  if ((rb - ra).norm() == 0.0) return std::nullopt;
   const Eigen::Vector3d n = (rb - ra).normalized();
   HertzReference h;
   h.approach_speed = -(vb - va).dot(n);

@@ -148,8 +148,11 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
       throw inputError(doc, B["orientation"], k + ".orientation", "expected a non-zero quaternion");
     in.p.normalize();
     const Eigen::Matrix3d A = rotationMatrix(in.p.data());
-    in.v = A.transpose() *
-           Eigen::Vector3d(vectorOr(doc, B["velocity"], k + ".velocity", Eigen::Vector3d::Zero()));
+    const Eigen::Vector3d v0 =
+        vectorOr(doc, B["velocity"], k + ".velocity", Eigen::Vector3d::Zero());
+    in.v = A.transpose() * v0;
+    scene.initial_position.push_back(in.r);
+    scene.initial_velocity.push_back(v0);
     in.w =
         A.transpose() * Eigen::Vector3d(vectorOr(doc, B["angular_velocity"],
                                                  k + ".angular_velocity", Eigen::Vector3d::Zero()));

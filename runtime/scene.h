@@ -38,6 +38,10 @@ struct Scene {
   SimulationSettings settings;
   int flush_rows = 16;
   std::vector<std::string> sid_files;  // resolved path of each body's SID
+  // Initial reference position (m) and velocity (m/s) of each body, inertial components,
+  // as given in the scene.
+  std::vector<Eigen::Vector3d> initial_position;
+  std::vector<Eigen::Vector3d> initial_velocity;
 };
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& sid_paths,
