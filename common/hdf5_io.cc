@@ -180,7 +180,17 @@ double readScalar(const Context& c, hid_t parent, const std::string& name) {
   return v;
 }
 
+namespace {
+// Attributes are replaced if present (the result file rewrites its status as it runs).
+void removeAttribute(const Context& c, hid_t obj, const std::string& name) {
+  const htri_t exists = H5Aexists(obj, name.c_str());
+  c.check(static_cast<herr_t>(exists), "look up attribute " + name, 0);
+  if (exists > 0) c.check(H5Adelete(obj, name.c_str()), "replace attribute " + name, 0);
+}
+}  // namespace
+
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, const std::string& v) {
+  removeAttribute(c, obj, name);
   Handle type(c.check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
   c.check(H5Tset_size(type, std::max<std::size_t>(1, v.size())), "string size", 0);
   c.check(H5Tset_cset(type, H5T_CSET_UTF8), "string charset", 0);
@@ -194,6 +204,7 @@ void writeAttribute(const Context& c, hid_t obj, const std::string& name, const 
 }
 
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, double v) {
+  removeAttribute(c, obj, name);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(
       c.check(H5Acreate2(obj, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT),
@@ -202,7 +213,17 @@ void writeAttribute(const Context& c, hid_t obj, const std::string& name, double
   c.check(H5Awrite(attr, H5T_NATIVE_DOUBLE, &v), "write attribute " + name, 0);
 }
 
+void writeAttribute(const Context& c, hid_t obj, const std::string& name, long v) {
+  removeAttribute(c, obj, name);
+  Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
+  Handle attr(c.check(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT),
+                      "create attribute " + name),
+              H5Aclose);
+  c.check(H5Awrite(attr, H5T_NATIVE_LONG, &v), "write attribute " + name, 0);
+}
+
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, int v) {
+  removeAttribute(c, obj, name);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(c.check(H5Acreate2(obj, name.c_str(), H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT),
                       "create attribute " + name),

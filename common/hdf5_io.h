@@ -70,9 +70,11 @@ double readScalar(const Context& c, hid_t parent, const std::string& name);
 std::vector<double> readArray(const Context& c, hid_t parent, const std::string& name,
                               std::vector<hsize_t>* dims);
 
+// Attributes are written as scalars, replacing an attribute of the same name.
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, const std::string& v);
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, double v);
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, int v);
+void writeAttribute(const Context& c, hid_t obj, const std::string& name, long v);
 std::string readStringAttribute(const Context& c, hid_t obj, const std::string& name);
 double readDoubleAttribute(const Context& c, hid_t obj, const std::string& name);
 int readIntAttribute(const Context& c, hid_t obj, const std::string& name);

@@ -5,8 +5,14 @@
 
 namespace ffriga {
 
-using h5::check;
 using h5::Handle;
+
+namespace {
+// Checked HDF5 call of the result file (common/hdf5_io.h: ComputeError naming the file).
+hid_t check(hid_t status, const std::string& what, const std::string& file) {
+  return h5::Context{file}.check(status, what);
+}
+}  // namespace
 
 ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& system,
                            const std::string& created_by, const std::string& scene_yaml,
@@ -26,8 +32,8 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
   for (int b = 0; b < system.numBodies(); ++b) {
     const BodyModel& body = system.body(b);
     Handle g = group(bodies.id(), body.name());
-    h5::writeAttribute(g.id(), "model", body.sid().model, path_);
-    h5::writeAttribute(g.id(), "sid_name", body.sid().name, path_);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "model", body.sid().model);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "sid_name", body.sid().name);
     BodySeries s;
     s.position = &create(g.id(), "position", 3, "m", "reference point r_R, inertial");
     s.orientation = &create(g.id(), "orientation", 4, "1",
@@ -44,10 +50,10 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
   for (int c = 0; c < system.numContacts(); ++c) {
     const ContactPair& pair = system.contact(c);
     Handle g = group(contacts.id(), pair.name());
-    h5::writeAttribute(g.id(), "body_a", system.body(pair.bodyA()).name(), path_);
-    h5::writeAttribute(g.id(), "body_b", system.body(pair.bodyB()).name(), path_);
-    h5::writeAttribute(g.id(), "penalty_factor", pair.options().penalty, path_);
-    h5::writeAttribute(g.id(), "penalty_factor_unit", std::string("N/m^3"), path_);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "body_a", system.body(pair.bodyA()).name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "body_b", system.body(pair.bodyB()).name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "penalty_factor", pair.options().penalty);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "penalty_factor_unit", std::string("N/m^3"));
     ContactSeries s;
     s.normal_force = &create(g.id(), "normal_force", 0, "N",
                              "magnitude of the resultant contact force on body_a "
@@ -100,8 +106,8 @@ ResultWriter::Series& ResultWriter::create(hid_t parent, const std::string& name
                                        plist.id(), H5P_DEFAULT),
                             "H5Dcreate2 '" + name + "'", path_),
                       H5Dclose);
-  h5::writeAttribute(s->dataset.id(), "unit", unit, path_);
-  h5::writeAttribute(s->dataset.id(), "description", description, path_);
+  h5::writeAttribute(h5::Context{path_}, s->dataset.id(), "unit", unit);
+  h5::writeAttribute(h5::Context{path_}, s->dataset.id(), "description", description);
   series_.push_back(std::move(s));
   return *series_.back();
 }
@@ -193,13 +199,13 @@ void ResultWriter::flush() {
 }
 
 void ResultWriter::setAttribute(const std::string& name, const std::string& value) {
-  h5::writeAttribute(file_.id(), name, value, path_);
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
 }
 void ResultWriter::setAttribute(const std::string& name, double value) {
-  h5::writeAttribute(file_.id(), name, value, path_);
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
 }
 void ResultWriter::setAttribute(const std::string& name, long value) {
-  h5::writeAttribute(file_.id(), name, value, path_);
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
 }
 
 void ResultWriter::close() {

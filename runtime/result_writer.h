@@ -12,7 +12,7 @@
 
 #include <Eigen/Dense>
 
-#include "runtime/hdf5_util.h"
+#include "common/hdf5_io.h"
 #include "runtime/multibody_system.h"
 
 namespace ffriga {

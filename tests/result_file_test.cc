@@ -13,16 +13,16 @@ namespace {
 
 // Reads a whole double dataset (rows x cols; cols = 1 for 1D).
 Eigen::MatrixXd readDataset(hid_t file, const std::string& name) {
-  h5::Handle ds(h5::check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name, "test"),
-                H5Dclose);
+  const h5::Context c{"test"};
+  h5::Handle ds(c.check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
   h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
   hsize_t dims[2] = {0, 1};
   const int rank = H5Sget_simple_extent_dims(space.id(), dims, nullptr);
   if (rank == 1) dims[1] = 1;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(dims[0], dims[1]);
   if (dims[0] > 0)
-    h5::check(H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
-              "read " + name, "test");
+    c.check(H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
+            "read " + name, 0);
   return m;
 }
 
@@ -72,9 +72,9 @@ TEST_CASE("result file: round trip of a free fall", "[result]") {
   }
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   REQUIRE(f.id() >= 0);
-  REQUIRE(h5::readStringAttribute(f.id(), "format", path) == kResultFormat);
-  REQUIRE(h5::readStringAttribute(f.id(), "status", path) == "completed");
-  REQUIRE(h5::readStringAttribute(f.id(), "scene_yaml", path) == "scene: none\n");
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "format") == kResultFormat);
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "status") == "completed");
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "scene_yaml") == "scene: none\n");
   const Eigen::MatrixXd t = readDataset(f.id(), "time");
   const Eigen::MatrixXd r = readDataset(f.id(), "bodies/ball/position");
   REQUIRE(t.rows() == 11);
@@ -107,7 +107,7 @@ TEST_CASE("result file: an interrupted run leaves a readable file", "[result]") 
   clearInterrupt();
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   REQUIRE(f.id() >= 0);
-  const std::string status = h5::readStringAttribute(f.id(), "status", path);
+  const std::string status = h5::readStringAttribute(h5::Context{path}, f.id(), "status");
   REQUIRE(status.rfind("interrupted at t = ", 0) == 0);
   const Eigen::MatrixXd t = readDataset(f.id(), "time");
   REQUIRE(t.rows() >= 4);  // outputs up to ~0.2 s

@@ -168,7 +168,7 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
   // damping), linear momentum zero throughout (equal and opposite forces).
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   REQUIRE(f.id() >= 0);
-  REQUIRE(h5::readStringAttribute(f.id(), "status", path) == "completed");
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "status") == "completed");
   auto lastRow = [&](const std::string& name, int cols) {
     h5::Handle ds(H5Dopen2(f.id(), name.c_str(), H5P_DEFAULT), H5Dclose);
     h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
