@@ -62,8 +62,8 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
 
   // Geometry: the (hierarchically) refined space; everything below works on the abstract
   // SplineSpace. The quadrature degrees come from the refined patch (all levels share them).
-  const NurbsPatch patch = refinedPatch(config);
   const HierarchicalSpace hspace = bodySpace(config);
+  const NurbsPatch& patch = hspace.basePatch();
   const SplineSpace& space = hspace;
   const int s = space.spaceDim();
   const int d = space.paramDim();
