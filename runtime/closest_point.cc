@@ -69,10 +69,16 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
       if (std::abs(g(a)) > o.tolerance * X.col(a).norm() * (r.norm() + length)) small = false;
     }
     if (small) {
+      // Eq. (15) holds in the free directions. A direction held at the domain boundary
+      // (x_C beyond the surface's edge) makes the foot point improper if the gradient there
+      // is more than round-off. Free directions are never tested again: for a point close
+      // to the surface, |r| -> 0 and a test relative to |r| would reject converged interior
+      // points and switch their contact force off discontinuously.
       p.converged = true;
       p.orthogonal = true;
       for (int a = 0; a < d; ++a) {
-        if (std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm() + 1e-300)
+        const bool held = std::find(freeDirs.begin(), freeDirs.end(), a) == freeDirs.end();
+        if (held && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
           p.orthogonal = false;
       }
       surf.evaluate(p.element, p.s.data(), points, 1, p.point);

@@ -86,6 +86,31 @@ TEST_CASE("closest point: Newton finds the nearest point of curved NURBS surface
   }
 }
 
+TEST_CASE("closest point: points just off the surface have proper foot points", "[contact]") {
+  // A contact point a few nm from the target (the penetrations of a penalty contact) must
+  // project orthogonally: a point dropped as "beyond the edge" switches its force off
+  // discontinuously and stalls the integrator (seen with sphere2d_h6).
+  const NurbsPatch patch = curvedPatch(1.0, 0.0);
+  const ContactSurface cs = test::bezierExtract(patch);
+  const ExtractedSurface surf(cs, patch.weights());
+  for (int k = 0; k < 200; ++k) {
+    const double s[2] = {test::uniform(0.05, 0.95), test::uniform(0.05, 0.95)};
+    const PatchPoint foot = patch.evaluate(s, 1);
+    const Eigen::Vector3d t0 = foot.dx.col(0), t1 = foot.dx.col(1);
+    const Eigen::Vector3d n = t0.cross(t1).normalized();
+    const double offset = (k % 2 ? 1.0 : -1.0) * std::pow(10.0, test::uniform(-14.0, -6.0));
+    const Eigen::Vector3d x = foot.x + offset * n;
+    const SurfaceProjection p = closestPoint(surf, patch.points(), x, nullptr);
+    REQUIRE(p.converged);
+    REQUIRE(p.orthogonal);
+    // The foot point is s itself: its distance is |offset| up to Newton's tangential
+    // tolerance (1e-12 times the surface size ~2, squared in the normal distance) and
+    // a few ulp of coordinates of size ~1.
+    CHECK(std::abs((p.point.x - x).dot(n) + offset) <= 1e-14);
+    CHECK((p.point.x - foot.x).norm() <= 1e-10);
+  }
+}
+
 TEST_CASE("contact forces: equal and opposite, and the gradient of the penalty energy",
           "[contact]") {
   // Body A: cap opening downwards facing +z at z ~ 0.3; body B: cap facing -z placed so that
