@@ -52,7 +52,7 @@ void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd
 }
 
 void MultibodySystem::rhs(double, const double* y, double* ydot) {
-  contactForces(y, h_, nullptr);
+  contactForces(y, h_, &rhs_states_);
   for (int b = 0; b < numBodies(); ++b) {
     const BodyModel& body = *bodies_[b];
     const double* sp = y + pos_offset_[b];

@@ -53,6 +53,10 @@ class MultibodySystem : public OdeSystem {
   bool jacobian(double t, const double* y, const double* f, const double* scale,
                 double* J) override;
 
+  // The pairs' diagnostics at the state of the latest rhs() call. CVODE evaluates the
+  // right-hand side last at the final Newton iterate of an accepted step, so after a step
+  // this is the contact state at its end to within the Newton tolerance, at no extra cost.
+  const std::vector<ContactState>& lastRhsContacts() const { return rhs_states_; }
   // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<ContactState>* states);
@@ -67,6 +71,7 @@ class MultibodySystem : public OdeSystem {
   int size_ = 0;
   Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::VectorXd> h_;  // workspace: generalised applied forces per body
+  std::vector<ContactState> rhs_states_;
   void layout();
 };
 

@@ -24,19 +24,6 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-int activePoints(MultibodySystem& system, const Eigen::VectorXd& y, double* maxForce) {
-  if (system.numContacts() == 0) return 0;
-  std::vector<ContactState> states;
-  std::vector<Eigen::VectorXd> h;
-  system.contactForces(y.data(), h, &states);
-  int active = 0;
-  for (const ContactState& s : states) {
-    active += s.active_points;
-    if (maxForce) *maxForce = std::max(*maxForce, s.normal_force);
-  }
-  return active;
-}
-
 void writeStatistics(ResultWriter& w, const SimulationReport& r) {
   w.setAttribute("status", r.status);
   w.setAttribute("final_time_s", r.final_time);
@@ -111,10 +98,13 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         writer.append(outputTime(nextOut), y, system);
         ++nextOut;
       }
-      // Phase bookkeeping (paper Table 3): contact state at the end of the step.
-      Eigen::VectorXd yt;
-      integ.interpolate(t, yt);
-      const bool contact = activePoints(system, yt, &report.max_normal_force) > 0;
+      // Phase bookkeeping (paper Table 3): contact state at the end of the step, as the
+      // step's last right-hand side saw it (MultibodySystem::lastRhsContacts).
+      bool contact = false;
+      for (const ContactState& s : system.lastRhsContacts()) {
+        contact = contact || s.active_points > 0;
+        report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
+      }
       if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
       if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
       if (contact)
