@@ -11,11 +11,13 @@ namespace ffriga {
 void bernsteinBasis(int p, double t, int order, Eigen::MatrixXd& out) {
   // Values of degree p - r by the triangular recursion B_{i,k} = (1-t) B_{i,k-1} + t B_{i-1,k-1};
   // derivatives: d/dt B_{i,p} = p (B_{i-1,p-1} - B_{i,p-1}) applied r times.
+  // Hot path of the contact search: no heap allocation beyond `out` (reused if sized).
+  constexpr int kMaxDegree = 24;
+  FFRIGA_CHECK(p >= 0 && p <= kMaxDegree, "Bernstein degree " << p << " outside 0.." << kMaxDegree);
   out.setZero(order + 1, p + 1);
-  std::vector<std::vector<double>> level(p + 1);
-  level[0] = {1.0};
+  double level[kMaxDegree + 1][kMaxDegree + 1];
+  level[0][0] = 1.0;
   for (int k = 1; k <= p; ++k) {
-    level[k].assign(k + 1, 0.0);
     for (int i = 0; i <= k; ++i) {
       const double left = i < k ? level[k - 1][i] : 0.0;
       const double right = i > 0 ? level[k - 1][i - 1] : 0.0;
@@ -24,7 +26,7 @@ void bernsteinBasis(int p, double t, int order, Eigen::MatrixXd& out) {
   }
   for (int r = 0; r <= order && r <= p; ++r) {
     // Coefficients of the r-th derivative in the basis of degree p - r: finite differences.
-    const std::vector<double>& low = level[p - r];
+    const double* low = level[p - r];
     double factor = 1.0;
     for (int j = 0; j < r; ++j) factor *= p - j;
     for (int i = 0; i <= p; ++i) {
@@ -93,15 +95,16 @@ int ExtractedSurface::findElement(const double* s) const {
 }
 
 void ExtractedSurface::basis(int e, const double* s, int order, Eigen::MatrixXd& R) const {
+  // Workspaces per thread: the contact search calls this millions of times from an OpenMP
+  // loop, and Eigen reuses storage of the same size without allocating.
+  thread_local Eigen::MatrixXd b0, b1, bern, B;
   const std::vector<int>& p = surface_->degrees;
-  Eigen::MatrixXd b0, b1;
+  const int rows = numDerivativeRows(dim_, order);
   const double h0 = upper_(e, 0) - lower_(e, 0);
   bernsteinBasis(p[0], (s[0] - lower_(e, 0)) / h0, order, b0);
   for (int r = 1; r <= order; ++r) b0.row(r) /= std::pow(h0, r);
-  const int rows = numDerivativeRows(dim_, order);
-  Eigen::MatrixXd bern(rows, 1);
   if (dim_ == 1) {
-    bern = b0.topRows(rows);
+    B.noalias() = b0.topRows(rows) * surface_->extraction[e].transpose();
   } else {
     const double h1 = upper_(e, 1) - lower_(e, 1);
     bernsteinBasis(p[1], (s[1] - lower_(e, 1)) / h1, order, b1);
@@ -115,16 +118,16 @@ void ExtractedSurface::basis(int e, const double* s, int order, Eigen::MatrixXd&
         for (int i = 0; i < n0; ++i)
           bern(row, i + n0 * j) = b0(kOrders[row][0], i) * b1(kOrders[row][1], j);
     }
+    B.noalias() = bern * surface_->extraction[e].transpose();
   }
-  const Eigen::MatrixXd B = bern * surface_->extraction[e].transpose();
   rationalize(B, element_weights_[e], dim_, order, R);
 }
 
 void ExtractedSurface::evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
                                 SurfacePoint& out) const {
-  Eigen::MatrixXd R;
+  thread_local Eigen::MatrixXd R;
   basis(e, s, order, R);
-  out = pointFromTable(R, functions(e), points, dim_, order);
+  pointFromTable(R, functions(e), points, dim_, order, out);
 }
 
 Eigen::VectorXd ExtractedSurface::normal(const Eigen::MatrixXd& dx) const {

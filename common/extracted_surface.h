@@ -58,7 +58,8 @@ class ExtractedSurface {
   // Rational basis table of element e at s: numDerivativeRows(dim, order) x numFunctions(e).
   void basis(int e, const double* s, int order, Eigen::MatrixXd& R) const;
   // Point and derivatives; `points` holds the (deformed) control points, one row per body
-  // control point (only the rows of this surface's functions are read).
+  // control point (only the rows of this surface's functions are read). Members of `out`
+  // above `order` keep what they held (storage is reused: no allocation in the hot path).
   void evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
                 SurfacePoint& out) const;
   // Unit outward normal from first derivatives (header comment).

@@ -155,14 +155,20 @@ void NurbsPatch::basis(const double* xi, int order, PatchBasis& out) const {
   rationalBasisOnSpans(spans, xi, order, out);
 }
 
-PatchPoint pointFromTable(const Eigen::MatrixXd& table, const int* functions,
-                          const Eigen::MatrixXd& points, int d, int order) {
-  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(table.rows(), points.cols());
-  for (int i = 0; i < table.cols(); ++i) X += table.col(i) * points.row(functions[i]);
-  PatchPoint pt;
+void pointFromTable(const Eigen::MatrixXd& table, const int* functions,
+                    const Eigen::MatrixXd& points, int d, int order, PatchPoint& pt) {
+  thread_local Eigen::MatrixXd X;
+  X.setZero(table.rows(), points.cols());
+  for (int i = 0; i < table.cols(); ++i) X.noalias() += table.col(i) * points.row(functions[i]);
   pt.x = X.row(0).transpose();
   if (order >= 1) pt.dx = X.middleRows(1, d).transpose();
   if (order >= 2) pt.ddx = X.middleRows(1 + d, d * (d + 1) / 2).transpose();
+}
+
+PatchPoint pointFromTable(const Eigen::MatrixXd& table, const int* functions,
+                          const Eigen::MatrixXd& points, int d, int order) {
+  PatchPoint pt;
+  pointFromTable(table, functions, points, d, order, pt);
   return pt;
 }
 

@@ -78,6 +78,10 @@ class NurbsPatch {
 // X = sum_i table(:, i) points(functions[i], :), split into x, dx and ddx.
 PatchPoint pointFromTable(const Eigen::MatrixXd& table, const int* functions,
                           const Eigen::MatrixXd& points, int d, int order);
+// The same into `pt`, reusing its storage (no allocation when sizes repeat: the contact
+// search's hot path). Members above `order` keep what they held.
+void pointFromTable(const Eigen::MatrixXd& table, const int* functions,
+                    const Eigen::MatrixXd& points, int d, int order, PatchPoint& pt);
 
 // Tensor-product B-spline basis on one element: given the spans and the parameter,
 // fills the table of all (p0+1)...(pd-1 + 1) non-zero functions (first direction fastest).

@@ -10,8 +10,11 @@ void rationalize(const Eigen::MatrixXd& B, const Eigen::VectorXd& w, int d, int 
   FFRIGA_ASSERT(B.rows() >= rows && B.cols() == w.size(),
                 "basis table " << B.rows() << "x" << B.cols());
   // Weighted polynomial basis and the weight function W with its derivatives.
-  const Eigen::MatrixXd Bw = B.topRows(rows) * w.asDiagonal();
-  const Eigen::VectorXd W = Bw.rowwise().sum();
+  // Per-thread workspaces: evaluated in the contact search's OpenMP loop, no allocation.
+  thread_local Eigen::MatrixXd Bw;
+  thread_local Eigen::VectorXd W;
+  Bw.noalias() = B.topRows(rows) * w.asDiagonal();
+  W.noalias() = Bw.rowwise().sum();
   R.resize(rows, B.cols());
   const double invW = 1.0 / W(0);
   R.row(0) = Bw.row(0) * invW;

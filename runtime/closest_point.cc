@@ -11,6 +11,12 @@ namespace ffriga {
 
 namespace {
 
+// Per-thread parameter workspace of the Newton line search (storage reused).
+Eigen::VectorXd& trial_s() {
+  thread_local Eigen::VectorXd s;
+  return s;
+}
+
 // Element holding s; if s lies in a hole of the domain, the element whose box is nearest
 // (s is then moved into that box).
 int locate(const ExtractedSurface& surf, Eigen::VectorXd& s, int hint) {
@@ -39,33 +45,44 @@ int locate(const ExtractedSurface& surf, Eigen::VectorXd& s, int hint) {
   return best;
 }
 
+// Small fixed-capacity types (parametric dimension <= 2, space dimension <= 3): the Newton
+// loop runs for every collocation point at every right-hand side and must not allocate.
+using ParamVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
+using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+using SpaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+
 bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
             const ProjectionOptions& o, SurfaceProjection& p) {
   const int d = surf.dim();
-  const Eigen::VectorXd lo = surf.domainLower(), hi = surf.domainUpper();
+  const Eigen::VectorXd& lo = surf.domainLower();
+  const Eigen::VectorXd& hi = surf.domainUpper();
   const double paramScale = (hi - lo).maxCoeff();
+  thread_local SurfacePoint trial;
   for (int it = 0; it < o.max_iterations; ++it) {
     p.element = locate(surf, p.s, p.element);
     surf.evaluate(p.element, p.s.data(), points, 2, p.point);
-    const Eigen::VectorXd r = p.point.x - x;
+    const SpaceVector r = p.point.x - x;
     const Eigen::MatrixXd& X = p.point.dx;
-    const Eigen::VectorXd g = X.transpose() * r;
-    Eigen::MatrixXd H = X.transpose() * X;
-    const Eigen::MatrixXd G = H;
+    const ParamVector g = X.transpose() * r;
+    ParamMatrix H = X.transpose() * X;
+    const ParamMatrix G = H;
     for (int a = 0; a < d; ++a)
       for (int b = 0; b < d; ++b)
         H(a, b) += r.dot(p.point.ddx.col(secondDerivativeRow(d, a, b) - 1 - d));
     // Active bounds: at the domain boundary with the descent direction -g pointing out.
-    std::vector<int> freeDirs;
+    int freeDirs[2], nf = 0;
+    bool held[2] = {false, false};
     for (int a = 0; a < d; ++a) {
       const bool atLo = p.s(a) <= lo(a) && g(a) > 0.0;
       const bool atHi = p.s(a) >= hi(a) && g(a) < 0.0;
-      if (!atLo && !atHi) freeDirs.push_back(a);
+      held[a] = atLo || atHi;
+      if (!held[a]) freeDirs[nf++] = a;
     }
     // Converged if the gradient vanishes in every free direction (Eq. 15).
     const double length = (X.colwise().norm().maxCoeff()) * paramScale;
     bool small = true;
-    for (int a : freeDirs) {
+    for (int i = 0; i < nf; ++i) {
+      const int a = freeDirs[i];
       if (std::abs(g(a)) > o.tolerance * X.col(a).norm() * (r.norm() + length)) small = false;
     }
     if (small) {
@@ -77,17 +94,15 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
       p.converged = true;
       p.orthogonal = true;
       for (int a = 0; a < d; ++a) {
-        const bool held = std::find(freeDirs.begin(), freeDirs.end(), a) == freeDirs.end();
-        if (held && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
+        if (held[a] && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
           p.orthogonal = false;
       }
       surf.evaluate(p.element, p.s.data(), points, 1, p.point);
       return true;
     }
     // Newton step on the free directions (Gauss-Newton if H is not positive definite there).
-    const int nf = static_cast<int>(freeDirs.size());
-    Eigen::MatrixXd Hf(nf, nf), Gf(nf, nf);
-    Eigen::VectorXd gf(nf);
+    ParamMatrix Hf(nf, nf), Gf(nf, nf);
+    ParamVector gf(nf);
     for (int i = 0; i < nf; ++i) {
       gf(i) = g(freeDirs[i]);
       for (int j = 0; j < nf; ++j) {
@@ -95,17 +110,17 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
         Gf(i, j) = G(freeDirs[i], freeDirs[j]);
       }
     }
-    Eigen::LLT<Eigen::MatrixXd> llt(Hf);
-    const Eigen::VectorXd sf = llt.info() == Eigen::Success ? Eigen::VectorXd(-llt.solve(gf))
-                                                            : Eigen::VectorXd(-Gf.ldlt().solve(gf));
-    Eigen::VectorXd step = Eigen::VectorXd::Zero(d);
+    Eigen::LLT<ParamMatrix> llt(Hf);
+    const ParamVector sf =
+        llt.info() == Eigen::Success ? ParamVector(-llt.solve(gf)) : ParamVector(-Gf.ldlt().solve(gf));
+    ParamVector step = ParamVector::Zero(d);
     for (int i = 0; i < nf; ++i) step(freeDirs[i]) = sf(i);
     if (!step.allFinite()) return false;
     // Backtracking: accept the first of step, step/2, ... that decreases phi = |r|^2 / 2
     // (Newton's full step near the solution; guards Gauss-Newton far from it).
     const double phi = 0.5 * r.squaredNorm();
-    SurfacePoint trial;
-    Eigen::VectorXd s = p.s;
+    Eigen::VectorXd& s = trial_s();
+    s = p.s;
     int e = p.element;
     for (int k = 0; k < 30; ++k) {
       s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
