@@ -259,7 +259,8 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
       doubleOr(doc, I["atol_angular_velocity"], "integrator.atol_angular_velocity", 1e-6);
   s.integrator.max_step = doubleOr(doc, I["max_step"], "integrator.max_step", 0.0);
   s.integrator.initial_step = doubleOr(doc, I["initial_step"], "integrator.initial_step", 0.0);
-  s.integrator.max_order = I["max_order"] ? getInt(doc, I["max_order"], "integrator.max_order") : 5;
+  s.integrator.max_order = I["max_order"] ? getInt(doc, I["max_order"], "integrator.max_order")
+                                          : IntegratorOptions().max_order;
   scene.y0.resize(sys.size());
   s.integrator.atol.resize(sys.size());
   for (int b = 0; b < sys.numBodies(); ++b) {
