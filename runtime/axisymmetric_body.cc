@@ -94,6 +94,12 @@ void AxisymmetricBody::solveMass(const double*, Eigen::MatrixXd& B) const {
   B.bottomRows(n) = MeInvBq - sign_ * MeInvCt_ * aY;
 }
 
+void AxisymmetricBody::massBlocks(const double*, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const {
+  // M = [[m, s ct^T], [s ct, Me]] (constant).
+  C = sign_ * ct_;
+  Mrr = Eigen::MatrixXd::Constant(1, 1, sid_->mass);
+}
+
 void AxisymmetricBody::pointGradients(const BodyPose& pose, const Eigen::VectorXd&,
                                       const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
                                       Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {

@@ -1,5 +1,6 @@
 #include "runtime/bdf_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -13,6 +14,7 @@
 
 #include "common/error.h"
 #include "runtime/eigen_dense_solver.h"
+#include "runtime/structured_solver.h"
 
 namespace ffriga {
 
@@ -26,6 +28,7 @@ struct BdfIntegrator::Impl {
   SUNLinearSolver ls = nullptr;
   std::exception_ptr rhs_error;
   std::string last_message;
+  std::unique_ptr<StructuredSolverData> structured;  // set if the structured solver is used
 
   void check(int flag, const char* call) const {
     if (flag >= 0) return;
@@ -66,6 +69,14 @@ struct BdfIntegrator::Impl {
     }
   }
 
+  static int linearSystem(realtype t, N_Vector y, N_Vector fy, SUNMatrix A, booleantype jok,
+                          booleantype* jcur, realtype gamma, void* data, N_Vector tmp1,
+                          N_Vector tmp2, N_Vector tmp3) {
+    Impl* self = static_cast<Impl*>(data);
+    return structuredLinearSystem(t, y, fy, A, jok, jcur, gamma, self->structured.get(), tmp1,
+                                  tmp2, tmp3);
+  }
+
   static void errorHandler(int, const char* module, const char* function, char* msg, void* data) {
     static_cast<Impl*>(data)->last_message = Str() << module << "/" << function << ": " << msg;
   }
@@ -97,6 +108,28 @@ BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd
   m.check(CVodeSetMaxOrd(m.cvode, o.max_order), "CVodeSetMaxOrd");
   if (o.max_step > 0.0) m.check(CVodeSetMaxStep(m.cvode, o.max_step), "CVodeSetMaxStep");
   if (o.initial_step > 0.0) m.check(CVodeSetInitStep(m.cvode, o.initial_step), "CVodeSetInitStep");
+  // Structured Newton matrix if asked for (kAuto) and the system has it at the initial state.
+  Eigen::VectorXd scale0 = Eigen::VectorXd::Ones(n);
+  for (int i = 0; i < n; ++i) scale0(i) = std::max(std::abs(y0(i)), o.atol(i) / o.rtol);
+  if (o.linear_solver == LinearSolverKind::kAuto) {
+    auto data = std::make_unique<StructuredSolverData>();
+    if (system.structuredJacobian(t0, y0.data(), scale0.data(), data->J)) {
+      data->system = &system;
+      data->cvode = m.cvode;
+      data->error = &m.rhs_error;
+      data->J = StructuredJacobian();  // evaluated again at CVODE's first setup
+      m.structured = std::move(data);
+    }
+  }
+  if (m.structured) {
+    m.A = SUNDenseMatrix(1, 1, m.ctx);  // placeholder: the Newton matrix is never dense
+    if (!m.A) throw ComputeError("CVODE: SUNDenseMatrix failed (out of memory?)");
+    m.ls = newStructuredSolver(m.ctx, m.structured.get());
+    if (!m.ls) throw ComputeError("CVODE: creating the linear solver failed (out of memory?)");
+    m.check(CVodeSetLinearSolver(m.cvode, m.ls, m.A), "CVodeSetLinearSolver");
+    m.check(CVodeSetLinSysFn(m.cvode, &Impl::linearSystem), "CVodeSetLinSysFn");
+    return;
+  }
   m.A = SUNDenseMatrix(n, n, m.ctx);
   if (!m.A) throw ComputeError("CVODE: SUNDenseMatrix failed (out of memory?)");
   m.ls = o.linear_solver == LinearSolverKind::kSundialsDense ? SUNLinSol_Dense(m.y, m.A, m.ctx)
@@ -112,6 +145,10 @@ BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd
     if (system.jacobian(t0, y0.data(), f.data(), scale.data(), J.data()))
       m.check(CVodeSetJacFn(m.cvode, &Impl::jacobian), "CVodeSetJacFn");
   }
+}
+
+bool BdfIntegrator::structured() const {
+  return impl_->structured != nullptr;
 }
 
 BdfIntegrator::~BdfIntegrator() {

@@ -1,6 +1,7 @@
 // Stiff time integration of an OdeSystem with SUNDIALS CVODE (BDF, variable order 1..5 and
-// variable step, Newton iteration with a dense direct linear solver: Eigen's LU by default,
-// runtime/eigen_dense_solver.h; the Jacobian from the system if it provides one, else by
+// variable step, Newton iteration with a direct linear solver: the structured Woodbury solve
+// of runtime/structured_solver.h where the system provides a structured Jacobian, else a
+// dense LU (Eigen's, runtime/eigen_dense_solver.h) of the system's dense Jacobian or of
 // CVODE's difference quotients). The paper uses MATLAB's ode15s (NDF/BDF); CVODE's BDF is
 // its direct equivalent.
 //
@@ -19,11 +20,13 @@
 
 namespace ffriga {
 
-// Dense LU of the Newton matrix: Eigen's blocked LU (default) or SUNDIALS' reference LU.
-enum class LinearSolverKind { kEigenDense, kSundialsDense };
+// Newton matrix: structured (Woodbury, runtime/structured_newton.h) where the system
+// provides a structured Jacobian, else Eigen's blocked dense LU; kEigenDense and
+// kSundialsDense (SUNDIALS' reference LU) force a dense n x n matrix.
+enum class LinearSolverKind { kAuto, kEigenDense, kSundialsDense };
 
 struct IntegratorOptions {
-  LinearSolverKind linear_solver = LinearSolverKind::kEigenDense;
+  LinearSolverKind linear_solver = LinearSolverKind::kAuto;
   double rtol = 1e-6;         // relative tolerance (dimensionless)
   Eigen::VectorXd atol;       // absolute tolerance per component (units of y)
   double max_step = 0.0;      // s; 0: unlimited
@@ -72,6 +75,9 @@ class BdfIntegrator {
   double time() const;
   Eigen::VectorXd currentState() const;
   IntegratorStats stats() const;
+  // True if the structured Newton matrix is in use (LinearSolverKind::kAuto, and the system
+  // provided a structured Jacobian at the initial state).
+  bool structured() const;
 
  private:
   struct Impl;

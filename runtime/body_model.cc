@@ -28,6 +28,28 @@ BodyModel::BodyModel(std::string name, std::shared_ptr<const FlexibleBodySid> si
       throw InputError(Str() << "body '" << name_ << "': Me is not positive definite");
     }
   }
+  checkDiagonal();
+}
+
+void BodyModel::setDamping(const Eigen::MatrixXd& De) {
+  De_ = De;
+  checkDiagonal();
+}
+
+void BodyModel::checkDiagonal() {
+  // Off-diagonal parts below 1e-8 of the largest diagonal entry only perturb the Newton
+  // matrix, which needs to be approximate only (modified Newton iteration).
+  const FlexibleBodySid& s = *sid_;
+  auto isDiagonal = [](const Eigen::MatrixXd& A) {
+    const double scale = A.diagonal().cwiseAbs().maxCoeff();
+    const Eigen::MatrixXd off = A - Eigen::MatrixXd(A.diagonal().asDiagonal());
+    return off.cwiseAbs().maxCoeff() <= 1e-8 * scale;
+  };
+  const int nq = s.nq();
+  diagonal_ = nq == 0 || (isDiagonal(s.Ke) && isDiagonal(De_) &&
+                          (s.Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() <= 1e-8);
+  k_ = s.Ke.diagonal();
+  c_ = De_.diagonal();
 }
 
 double BodyModel::elasticEnergy(const double* sp) const {

@@ -48,7 +48,17 @@ class BodyModel {
 
   // Modal damping De (nq x nq), initially the SID's; a scene may override it.
   const Eigen::MatrixXd& damping() const { return De_; }
-  void setDamping(const Eigen::MatrixXd& De) { De_ = De; }
+  void setDamping(const Eigen::MatrixXd& De);
+
+  // Structure for the Newton matrix (runtime/structured_newton.h). True if Me = E and Ke, De
+  // are diagonal (Eq. 13; to 1e-8 relative: the Newton matrix may be approximate), with
+  // their diagonals k (1/s^2) and c (1/s).
+  bool diagonalElasticity() const { return diagonal_; }
+  const Eigen::VectorXd& stiffnessDiagonal() const { return k_; }
+  const Eigen::VectorXd& dampingDiagonal() const { return c_; }
+  // The mass matrix M(q) = [[Mrr, C^T], [C, Me]] split at the rigid velocities: C is
+  // nq x numRigidVelocities(), Mrr square.
+  virtual void massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const = 0;
 
   virtual BodyPose pose(const double* sp) const = 0;
   // d s_p / dt from (s_p, s_v).
@@ -88,6 +98,11 @@ class BodyModel {
   std::shared_ptr<const FlexibleBodySid> sid_;
   Eigen::MatrixXd De_;
   Eigen::LLT<Eigen::MatrixXd> Me_llt_;  // factor of Me
+  bool diagonal_ = false;
+  Eigen::VectorXd k_, c_;
+
+ private:
+  void checkDiagonal();
 };
 
 }  // namespace ffriga

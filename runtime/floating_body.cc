@@ -205,6 +205,19 @@ void FloatingBody3d::solveMass(const double* sp, Eigen::MatrixXd& B) const {
   B = massMatrix(q).ldlt().solve(B);
 }
 
+void FloatingBody3d::massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const {
+  const Eigen::Map<const Eigen::VectorXd> q(sp + 7, nq());
+  const Invariants inv = invariants(q);
+  Mrr.setZero(6, 6);
+  Mrr.topLeftCorner<3, 3>() = sid_->mass * Eigen::Matrix3d::Identity();
+  Mrr.block<3, 3>(3, 0) = skew(inv.mc);
+  Mrr.block<3, 3>(0, 3) = skew(inv.mc).transpose();
+  Mrr.block<3, 3>(3, 3) = inv.J;
+  C.resize(nq(), 6);
+  C.leftCols<3>() = sid_->Ct;
+  C.rightCols<3>() = inv.CrT.transpose();
+}
+
 void FloatingBody3d::pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
                                     const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
                                     Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {

@@ -39,6 +39,7 @@ class FloatingBody3d : public BodyModel {
   void accelerations(const double* sp, const double* sv, const double* h_applied,
                      const Eigen::Vector3d& gravity, double* accel) const override;
   void solveMass(const double* sp, Eigen::MatrixXd& B) const override;
+  void massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const override;
   void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::MatrixXd& Phi_x,
                       const Eigen::VectorXd& n, Eigen::VectorXd& bv,
                       Eigen::VectorXd& bp) const override;

@@ -118,6 +118,94 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
   return true;
 }
 
+bool MultibodySystem::structuredJacobian(double, const double* y, const double* scale,
+                                         StructuredJacobian& J) {
+  for (const auto& b : bodies_)
+    if (!b->diagonalElasticity()) return false;
+  const int n = size_;
+  contactForces(y, h_, nullptr);
+  int r = 0;
+  for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
+  for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
+  J.n = n;
+  J.q_index.clear();
+  J.v_index.clear();
+  J.k.resize(0);
+  J.c.resize(0);
+  J.U.setZero(n, r);
+  J.V.setZero(n, r);
+  std::vector<Eigen::MatrixXd> C(numBodies()), Sinv(numBodies());
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  int col = 0;
+  int pairs = 0;
+  for (const auto& b : bodies_) pairs += b->nq();
+  J.k.resize(pairs);
+  J.c.resize(pairs);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int np = body.numPositions(), nv = body.numVelocities(), nq = body.nq();
+    const int nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
+    const int po = pos_offset_[b], vo = vel_offset_[b];
+    // Elastic pairs: d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E).
+    for (int i = 0; i < nq; ++i) {
+      J.k(J.q_index.size()) = body.stiffnessDiagonal()(i);
+      J.c(J.q_index.size()) = body.dampingDiagonal()(i);
+      J.q_index.push_back(po + nrp + i);
+      J.v_index.push_back(vo + nrv + i);
+    }
+    // Rigid columns: difference quotients of the body's rates, contact forces frozen.
+    Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
+    body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
+    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
+    for (int k = 0; k < nrp + nrv; ++k, ++col) {
+      const int j = k < nrp ? po + k : vo + (k - nrp);
+      const double saved = yy(j);
+      const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+      yy(j) = saved + delta;
+      body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
+      body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
+      yy(j) = saved;
+      J.U.col(col).segment(po, np) = (pr - pr0) / delta;
+      J.U.col(col).segment(vo, nv) = (a - a0) / delta;
+      J.V(j, col) = 1.0;
+    }
+    // Elastic columns through M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]]
+    // (S = Mrr - C^T C): d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c).
+    Eigen::MatrixXd Mrr;
+    body.massBlocks(y + po, C[b], Mrr);
+    Sinv[b] = (Mrr - C[b].transpose() * C[b]).inverse();
+    const Eigen::MatrixXd SCt = Sinv[b] * C[b].transpose();
+    for (int k = 0; k < nrv; ++k, ++col) {
+      J.U(vo + k, col) = 1.0;
+      J.U.col(col).segment(vo + nrv, nq) = -C[b].col(k);
+      J.V.col(col).segment(po + nrp, nq) = SCt.row(k).transpose().cwiseProduct(body.stiffnessDiagonal());
+      J.V.col(col).segment(vo + nrv, nq) = SCt.row(k).transpose().cwiseProduct(body.dampingDiagonal());
+    }
+  }
+  // Contact: d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T (contact_pair.h), mapped by M^-1.
+  auto solveMass = [&](int b, const Eigen::VectorXd& x) {
+    const int nrv = bodies_[b]->numRigidVelocities();
+    const Eigen::VectorXd xr = x.head(nrv), xe = x.tail(x.size() - nrv);
+    Eigen::VectorXd z(x.size());
+    z.head(nrv) = Sinv[b] * (xr - C[b].transpose() * xe);
+    z.tail(xe.size()) = xe - C[b] * z.head(nrv);
+    return z;
+  };
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bc = t.body_c, bt = t.body_t;
+      J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
+      J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
+      J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
+      J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+      ++col;
+    }
+  }
+  FFRIGA_ASSERT(col == r, "structured Jacobian: " << col << " of " << r << " columns");
+  return true;
+}
+
 void MultibodySystem::normalize(double* y) const {
   for (int b = 0; b < numBodies(); ++b) bodies_[b]->normalize(y + pos_offset_[b]);
 }

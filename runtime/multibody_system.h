@@ -57,6 +57,15 @@ class MultibodySystem : public OdeSystem {
   // right-hand side last at the final Newton iterate of an accepted step, so after a step
   // this is the contact state at its end to within the Newton tolerance, at no extra cost.
   const std::vector<ContactState>& lastRhsContacts() const { return rhs_states_; }
+  // The same Jacobian in structured form (runtime/structured_newton.h), available when every
+  // body has Me = E and diagonal Ke, De: D holds the elastic pairs; U V^T the rigid columns
+  // (difference quotients as above), the rigid-elastic inertial coupling through M(q)^-1
+  // (rank = rigid velocities per body) and one term per active contact point. Neglected, as
+  // in jacobian() up to round-off: the q-dependence of M(q) and the velocity-quadratic
+  // forces in the elastic columns (first order in q and w; the Newton matrix may be
+  // approximate).
+  bool structuredJacobian(double t, const double* y, const double* scale,
+                          StructuredJacobian& J) override;
   // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<ContactState>* states);

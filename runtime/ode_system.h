@@ -2,6 +2,8 @@
 // fixed size (Chrono's ChIntegrable idea). The integrator never looks inside.
 #pragma once
 
+#include "runtime/structured_newton.h"
+
 namespace ffriga {
 
 class OdeSystem {
@@ -17,6 +19,14 @@ class OdeSystem {
   virtual bool jacobian(double t, const double* y, const double* f, const double* scale,
                         double* J) {
     (void)t, (void)y, (void)f, (void)scale, (void)J;
+    return false;
+  }
+  // Optional Jacobian in the structured form J = D + U V^T of runtime/structured_newton.h
+  // at (t, y); `scale` as for jacobian(). Returns false if the system has none, or not at
+  // this state (the integrator then uses the dense Newton matrix).
+  virtual bool structuredJacobian(double t, const double* y, const double* scale,
+                                  StructuredJacobian& J) {
+    (void)t, (void)y, (void)scale, (void)J;
     return false;
   }
   // Called by the driver between output intervals to project invariants (unit quaternions).

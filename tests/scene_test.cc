@@ -119,13 +119,16 @@ integrator:
   rtol: 1.0e-8
 )";
 
-double runSpheres(const FlexibleBodySid& sid, double endTime, double rtol, SimulationReport& r) {
+// `file`: the result file, one per test case (ctest runs the cases in parallel).
+double runSpheres(const FlexibleBodySid& sid, double endTime, double rtol, SimulationReport& r,
+                  const std::string& file, LinearSolverKind solver = LinearSolverKind::kAuto) {
   std::string text = kScene;
   Scene scene = buildScene(parseYamlText(text, "scene.yaml"), {}, fakeLoader(sid));
   scene.settings.verbosity = 0;
   scene.settings.end_time = endTime;
   scene.settings.integrator.rtol = rtol;
-  const std::string path = "scene_test_flexible.h5";
+  scene.settings.integrator.linear_solver = solver;
+  const std::string path = file;
   ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
   r = simulate(*scene.system, scene.y0, scene.settings, writer);
   writer.close();
@@ -196,7 +199,7 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
 
 TEST_CASE("scene: flexible axisymmetric spheres collide and separate", "[scene]") {
   SimulationReport r;
-  runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, r);
+  runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, r, "scene_test_flexible.h5");
   INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", wall "
                     << r.wall_time_s << " s");
   REQUIRE(r.completed);
@@ -204,11 +207,56 @@ TEST_CASE("scene: flexible axisymmetric spheres collide and separate", "[scene]"
   REQUIRE(r.after.steps > 0);
 }
 
+TEST_CASE("scene: structured and dense Newton matrices give the same impact", "[scene]") {
+  // The Newton matrix only steers the corrector iteration: both runs solve the same
+  // equations to the same tolerance, so the force peaks agree to a few rtol (1e-6).
+  SimulationReport rs, rd;
+  runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, rs, "scene_test_structured.h5",
+             LinearSolverKind::kAuto);
+  runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, rd, "scene_test_dense.h5",
+             LinearSolverKind::kEigenDense);
+  INFO("structured: " << rs.max_normal_force << " N, " << rs.stats.steps << " steps; dense: "
+                      << rd.max_normal_force << " N, " << rd.stats.steps << " steps");
+  REQUIRE(rs.completed);
+  REQUIRE(rd.completed);
+  CHECK(std::abs(rs.max_normal_force / rd.max_normal_force - 1.0) <= 1e-5);
+  CHECK(std::abs((rs.contact_end - rs.contact_begin) / (rd.contact_end - rd.contact_begin) - 1.0) <=
+        1e-3);  // the ends are step midpoints: steps near separation are ~1e-3 of the duration
+}
+
+TEST_CASE("scene: structured Jacobian of axisymmetric bodies in contact is the dense one",
+          "[scene]") {
+  // Axisymmetric bodies have a constant mass matrix and no velocity-quadratic forces, so the
+  // structured form (D + U V^T) neglects nothing: it must equal the dense Jacobian,
+  // contact stiffness included.
+  const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
+  Scene scene = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
+  MultibodySystem& sys = *scene.system;
+  Eigen::VectorXd y = scene.y0;
+  // Push the upper sphere 1 um into the lower one and deform both a little.
+  y(sys.positionOffset(1)) -= 1e-6 + (y(sys.positionOffset(1)) - y(sys.positionOffset(0)) - 0.02);
+  for (int b = 0; b < 2; ++b)
+    for (int j = 0; j < 12; ++j) y(sys.positionOffset(b) + 1 + j) = 1e-9 * std::cos(j + b);
+  const int n = sys.size();
+  Eigen::VectorXd f(n);
+  sys.rhs(0.0, y.data(), f.data());
+  REQUIRE(sys.lastRhsContacts()[0].active_points > 0);
+  const Eigen::VectorXd scale = Eigen::VectorXd::Ones(n);
+  Eigen::MatrixXd Jd = Eigen::MatrixXd::Zero(n, n);
+  REQUIRE(sys.jacobian(0.0, y.data(), f.data(), scale.data(), Jd.data()));
+  StructuredJacobian Js;
+  REQUIRE(sys.structuredJacobian(0.0, y.data(), scale.data(), Js));
+  // Dense: one-sided quotients of the linear elastic forces (exact to round-off ~1e-16
+  // |Ke| / 1.5e-8) and M^-1 by LDLT; structured: exact diagonals and M^-1 by the Schur
+  // formula. 1e-7 of the largest entry (~omega_max^2 = 4e14) covers both.
+  CHECK((Js.dense() - Jd).cwiseAbs().maxCoeff() <= 1e-7 * Jd.cwiseAbs().maxCoeff());
+}
+
 // Timing of a paper-sized model (nq = 92 per body): run by hand with
 //   unit_tests "[.benchmark]" -s
 TEST_CASE("benchmark: flexible axisymmetric spheres, nq = 92", "[.benchmark]") {
   SimulationReport r;
-  runSpheres(flexibleSphere2d(0.01, 92), 6.0e-4, 1e-6, r);
+  runSpheres(flexibleSphere2d(0.01, 92), 6.0e-4, 1e-6, r, "scene_test_benchmark.h5");
   WARN("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", rhs "
                     << r.stats.rhs_evals << ", jacobians " << r.stats.jacobian_evals << ", setups "
                     << r.stats.linear_setups << ", wall " << r.wall_time_s << " s (before "
