@@ -88,6 +88,7 @@ def main():
     sid_dir = tempfile.mkdtemp(prefix="impact2d_")
     models = a.models.split(",")
     results = {}
+    summary = {}
     print(f"{'model':6} {'F_max N':>9} {'Hertz N':>9} {'dF %':>7} {'T us':>7} {'dT %':>7} "
           f"{'wall s (median of %d)' % a.repeat:>22}")
     for m in models:
@@ -114,14 +115,32 @@ def main():
     if a.sweep:
         print(f"\npenalty sweep (paper Fig. 7) on {a.sweep}; penalty factor in N/m^3")
         scene = os.path.join(ROOT, "configs", "scenes", f"impact2d_{a.sweep}.yaml")
-        for cp in [1e15, 3e15, 1e16, 3e16, 1e17, 3e17, 1e18]:
+        sweep = []
+        for cp in [1e15, 3e15, 1e16, 3e16, 1e17, 3e17, 1e18, 3e18, 1e19]:
             r = run_scene(a.build, scene, sid_dir, os.path.join(sid_dir, "sweep.h5"), cp)
             if "error" in r:
                 print(f"  cp = {cp:.0e}: failed: {r['error']}")
                 continue
+            sweep.append((cp, r.get("force_error_pct", float("nan"))))
             print(f"  cp = {cp:.0e}: F_max = {r['max_force_N']:.3f} N "
                   f"({r.get('force_error_pct', float('nan')):+.2f} % from Hertz), "
                   f"wall {r['wall_time_s']:.2f} s")
+        summary["sweep"] = {"model": a.sweep, "penalty_N_per_m3": [c for c, _ in sweep],
+                            "force_error_pct": [e for _, e in sweep]}
+        if a.plot and sweep:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+            fig, ax = plt.subplots(figsize=(6, 4))
+            ax.semilogx([c for c, _ in sweep], [e for _, e in sweep], "o-")
+            ax.axhline(0.0, color="k", lw=0.8)
+            ax.set_xlabel("penalty factor c_p [N/m³]")
+            ax.set_ylabel("max. force − Hertz [%]")
+            ax.set_title(f"Penalty sweep, sphere2d_{a.sweep} (paper Fig. 7)")
+            fig.tight_layout()
+            out = os.path.splitext(a.plot)[0] + "_sweep.png"
+            fig.savefig(out, dpi=120)
+            print(f"wrote {out}")
     if a.plot and results:
         import matplotlib
         matplotlib.use("Agg")
@@ -143,7 +162,8 @@ def main():
         for r in results.values():
             r.pop("time", None)
             r.pop("normal_force", None)
-        json.dump(results, open(a.json, "w"), indent=1)
+        summary["models"] = results
+        json.dump(summary, open(a.json, "w"), indent=1)
 
 
 if __name__ == "__main__":
