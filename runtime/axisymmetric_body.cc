@@ -45,9 +45,14 @@ void AxisymmetricBody::accelerations(const double* sp, const double* sv, const d
     return;
   }
   const Eigen::Map<const Eigen::VectorXd> q(sp + 1, n), qd(sv + 1, n);
-  const Eigen::VectorXd hq = Eigen::Map<const Eigen::VectorXd>(h_applied + 1, n) +
-                             sign_ * ct_ * gravity(1) - sid_->Ke * q - De_ * qd;
-  const Eigen::VectorXd MeInvHq = Me_llt_.solve(hq);
+  Eigen::VectorXd hq = Eigen::Map<const Eigen::VectorXd>(h_applied + 1, n) +
+                       sign_ * ct_ * gravity(1);
+  if (exactly_diagonal_) {
+    hq -= k_.cwiseProduct(q) + c_.cwiseProduct(qd);  // Me = E, diagonal Ke, De: O(nq)
+  } else {
+    hq -= sid_->Ke * q + De_ * qd;
+  }
+  const Eigen::VectorXd MeInvHq = exactly_diagonal_ ? hq : Eigen::VectorXd(Me_llt_.solve(hq));
   // Schur complement on the rigid row: (m - ct^T Me^-1 ct) aY = hY - s ct^T Me^-1 hq.
   const double aY = (hY - sign_ * ct_.dot(MeInvHq)) / schur_;
   accel[0] = aY;

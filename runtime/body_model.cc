@@ -48,6 +48,11 @@ void BodyModel::checkDiagonal() {
   const int nq = s.nq();
   diagonal_ = nq == 0 || (isDiagonal(s.Ke) && isDiagonal(De_) &&
                           (s.Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() <= 1e-8);
+  auto exactlyDiagonal = [](const Eigen::MatrixXd& A) {
+    return (A - Eigen::MatrixXd(A.diagonal().asDiagonal())).isZero(0.0);
+  };
+  exactly_diagonal_ = nq == 0 || (exactlyDiagonal(s.Ke) && exactlyDiagonal(De_) &&
+                                  s.Me == Eigen::MatrixXd::Identity(nq, nq));
   k_ = s.Ke.diagonal();
   c_ = De_.diagonal();
 }

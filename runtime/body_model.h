@@ -98,7 +98,9 @@ class BodyModel {
   std::shared_ptr<const FlexibleBodySid> sid_;
   Eigen::MatrixXd De_;
   Eigen::LLT<Eigen::MatrixXd> Me_llt_;  // factor of Me
-  bool diagonal_ = false;
+  bool diagonal_ = false;        // to 1e-8: for the Newton matrix
+  bool exactly_diagonal_ = false;  // Me = E, Ke, De diagonal exactly (igaprep's SIDs): the
+                                   // right-hand side may use k_, c_ in O(nq)
   Eigen::VectorXd k_, c_;
 
  private:

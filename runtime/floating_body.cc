@@ -128,7 +128,11 @@ void FloatingBody3d::accelerations(const double* sp, const double* sv, const dou
   if (n > 0) {
     Eigen::VectorXd hq = CrdotT.transpose() * w + s.Ct * w.cross(v);
     for (int i = 0; i < n; ++i) hq(i) -= 0.5 * w.dot(s.J1[i] * w) + w.dot(s.Cr1[i] * qd);
-    h.tail(n) -= hq + s.Ke * q + De_ * qd;
+    if (exactly_diagonal_) {
+      h.tail(n) -= hq + k_.cwiseProduct(q) + c_.cwiseProduct(qd);  // O(nq): Eq. 13
+    } else {
+      h.tail(n) -= hq + s.Ke * q + De_ * qd;
+    }
   }
   // Gravity.
   const Eigen::Vector3d gb = rotationMatrix(sp + 3).transpose() * gravity;
@@ -151,8 +155,10 @@ void FloatingBody3d::accelerations(const double* sp, const double* sv, const dou
   Eigen::MatrixXd C(n, 6);
   C.leftCols<3>() = s.Ct;
   C.rightCols<3>() = inv.CrT.transpose();
-  const Eigen::MatrixXd MeInvC = Me_llt_.solve(C);
-  const Eigen::VectorXd MeInvHq = Me_llt_.solve(h.tail(n));
+  // Me = E exactly: no solves.
+  const Eigen::MatrixXd MeInvC = exactly_diagonal_ ? C : Eigen::MatrixXd(Me_llt_.solve(C));
+  const Eigen::VectorXd MeInvHq = exactly_diagonal_ ? Eigen::VectorXd(h.tail(n))
+                                            : Eigen::VectorXd(Me_llt_.solve(h.tail(n)));
   const Eigen::Matrix<double, 6, 6> S = Mrr - C.transpose() * MeInvC;
   const Eigen::Matrix<double, 6, 1> ar = S.ldlt().solve(h.head<6>() - C.transpose() * MeInvHq);
   a.head<6>() = ar;
