@@ -62,31 +62,43 @@ void MultibodySystem::rhs(double, const double* y, double* ydot) {
   }
 }
 
+void MultibodySystem::rateQuotients(
+    int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
+    const std::function<void(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& column) const {
+  const BodyModel& body = *bodies_[b];
+  const int np = body.numPositions(), nv = body.numVelocities();
+  const int po = pos_offset_[b], vo = vel_offset_[b];
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
+  body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
+  body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
+  for (int k = 0; k < npCols + nvCols; ++k) {
+    const int j = k < npCols ? po + k : vo + (k - npCols);
+    const double saved = yy(j);
+    const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+    yy(j) = saved + delta;
+    body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
+    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
+    yy(j) = saved;
+    column(j, (pr - pr0) / delta, (a - a0) / delta);
+  }
+}
+
 bool MultibodySystem::jacobian(double, const double* y, const double*, const double* scale,
                                double* Jdata) {
   const int n = size_;
   Eigen::Map<Eigen::MatrixXd> J(Jdata, n, n);
   contactForces(y, h_, nullptr);
-  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
   Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
   for (int b = 0; b < numBodies(); ++b) {
     const BodyModel& body = *bodies_[b];
     const int np = body.numPositions(), nv = body.numVelocities();
     const int po = pos_offset_[b], vo = vel_offset_[b];
-    Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
-    body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
-    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
-    for (int k = 0; k < np + nv; ++k) {
-      const int j = k < np ? po + k : vo + (k - np);
-      const double saved = yy(j);
-      const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
-      yy(j) = saved + delta;
-      body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
-      body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
-      yy(j) = saved;
-      J.block(po, j, np, 1) = (pr - pr0) / delta;
-      J.block(vo, j, nv, 1) = (a - a0) / delta;
-    }
+    rateQuotients(b, np, nv, yy, scale,
+                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                    J.block(po, j, np, 1) = dpr;
+                    J.block(vo, j, nv, 1) = da;
+                  });
   }
   // Contact stiffness: dh_X/ds_p(Y) = -k bv_X bp_Y^T (signs of the target side folded in).
   bool any = false;
@@ -130,18 +142,15 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
   J.n = n;
   J.q_index.clear();
   J.v_index.clear();
-  J.k.resize(0);
-  J.c.resize(0);
   J.U.setZero(n, r);
   J.V.setZero(n, r);
-  std::vector<Eigen::MatrixXd> C(numBodies()), Sinv(numBodies());
-  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
-  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
-  int col = 0;
   int pairs = 0;
   for (const auto& b : bodies_) pairs += b->nq();
   J.k.resize(pairs);
   J.c.resize(pairs);
+  std::vector<Eigen::MatrixXd> C(numBodies()), Sinv(numBodies());
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  int col = 0;
   for (int b = 0; b < numBodies(); ++b) {
     const BodyModel& body = *bodies_[b];
     const int np = body.numPositions(), nv = body.numVelocities(), nq = body.nq();
@@ -155,21 +164,12 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
       J.v_index.push_back(vo + nrv + i);
     }
     // Rigid columns: difference quotients of the body's rates, contact forces frozen.
-    Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
-    body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
-    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
-    for (int k = 0; k < nrp + nrv; ++k, ++col) {
-      const int j = k < nrp ? po + k : vo + (k - nrp);
-      const double saved = yy(j);
-      const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
-      yy(j) = saved + delta;
-      body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
-      body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
-      yy(j) = saved;
-      J.U.col(col).segment(po, np) = (pr - pr0) / delta;
-      J.U.col(col).segment(vo, nv) = (a - a0) / delta;
-      J.V(j, col) = 1.0;
-    }
+    rateQuotients(b, nrp, nrv, yy, scale,
+                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                    J.U.col(col).segment(po, np) = dpr;
+                    J.U.col(col).segment(vo, nv) = da;
+                    J.V(j, col++) = 1.0;
+                  });
     // Elastic columns through M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]]
     // (S = Mrr - C^T C): d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c).
     Eigen::MatrixXd Mrr;

@@ -9,6 +9,7 @@
 // forces to its two bodies.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -82,6 +83,13 @@ class MultibodySystem : public OdeSystem {
   std::vector<Eigen::VectorXd> h_;  // workspace: generalised applied forces per body
   std::vector<ContactState> rhs_states_;
   void layout();
+  // Difference quotients of body b's rates (position rates and accelerations, the contact
+  // forces in h_ frozen) with respect to its first npCols positions and nvCols velocities:
+  // column(j, d positionRates / d y_j, d accelerations / d y_j) for each state index j.
+  // Increments sqrt(eps) max(|y_j|, scale_j); yy is restored.
+  void rateQuotients(
+      int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
+      const std::function<void(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& column) const;
 };
 
 }  // namespace ffriga
