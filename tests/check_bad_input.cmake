@@ -4,7 +4,7 @@
 # Each case file starts with a comment line "# expect: TEXT" giving a text the message must
 # contain. Optional lines "# output: yes" (run with -o OUT: the error comes from the
 # pipeline, and no output or temporary file may be left behind) and "# exit: N" (expected
-# exit code, default 2).
+# exit code, default 2); "# also: TEXT" (a second text the message must contain).
 # Variables: PROGRAM, CASES_DIR, OUT_DIR; ALWAYS_ARGS (appended to every run, '|'-separated);
 # USAGE_ARGS / USAGE_EXPECT (a usage error to check, arguments '|'-separated).
 # Also checks a missing input file.
@@ -14,10 +14,17 @@ function(expect_error args expected what)
   if(NOT DEFINED expected_rc)
     set(expected_rc 2)
   endif()
+  if(NOT DEFINED also)
+    set(also "")
+  endif()
   execute_process(COMMAND ${PROGRAM} ${args} ${always}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(STRIP "${err}" err)
   string(FIND "${err}" "${expected}" pos)
+  string(FIND "${err}" "${also}" pos_also)
+  if(pos_also EQUAL -1)
+    set(pos -1)
+  endif()
   string(REGEX MATCHALL "\n" newlines "${err}")
   list(LENGTH newlines nlines)
   file(GLOB leftovers "${OUT_DIR}/bad_input_case.sid.h5*")
@@ -33,16 +40,20 @@ foreach(case IN LISTS cases)
   string(REGEX REPLACE "^# expect: " "" expected "${first}")
   set(args "${case}")
   set(expected_rc 2)
+  set(also "")
   foreach(line IN LISTS head)
     if(line MATCHES "^# output: yes")
       list(APPEND args -q -o "${OUT_DIR}/bad_input_case.sid.h5")
     elseif(line MATCHES "^# exit: ([0-9]+)")
       set(expected_rc ${CMAKE_MATCH_1})
+    elseif(line MATCHES "^# also: (.*)")
+      set(also "${CMAKE_MATCH_1}")
     endif()
   endforeach()
   expect_error("${args}" "${expected}" "${case}")
 endforeach()
 set(expected_rc 2)
+set(also "")
 expect_error("${CASES_DIR}/does_not_exist.yaml" "does_not_exist.yaml: cannot open file" "missing file")
 if(USAGE_ARGS)
   string(REPLACE "|" ";" usage "${USAGE_ARGS}")
