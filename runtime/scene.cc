@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <string>
+#include <utility>
 
 #include "common/json_schema.h"
 #include "common/schemas.h"
@@ -261,6 +263,14 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
   s.integrator.initial_step = doubleOr(doc, I["initial_step"], "integrator.initial_step", 0.0);
   s.integrator.max_order = I["max_order"] ? getInt(doc, I["max_order"], "integrator.max_order")
                                           : IntegratorOptions().max_order;
+  // YAML spelling of LinearSolverKind (the schema restricts the values to these).
+  static const std::pair<const char*, LinearSolverKind> kSolvers[] = {
+      {"structured", LinearSolverKind::kAuto}, {"dense", LinearSolverKind::kEigenDense}};
+  if (I["linear_solver"]) {
+    const std::string v = getString(doc, I["linear_solver"], "integrator.linear_solver");
+    for (const auto& [name, kind] : kSolvers)
+      if (v == name) s.integrator.linear_solver = kind;
+  }
   scene.y0.resize(sys.size());
   s.integrator.atol.resize(sys.size());
   for (int b = 0; b < sys.numBodies(); ++b) {

@@ -224,6 +224,19 @@ TEST_CASE("scene: structured and dense Newton matrices give the same impact", "[
         1e-3);  // the ends are step midpoints: steps near separation are ~1e-3 of the duration
 }
 
+TEST_CASE("scene: integrator.linear_solver selects the Newton matrix", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  const Scene byDefault = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
+  CHECK(byDefault.settings.integrator.linear_solver == LinearSolverKind::kAuto);
+  const Scene dense = buildScene(
+      parseYamlText(replace(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: dense"),
+                    "scene.yaml"),
+      {}, fakeLoader(sid));
+  CHECK(dense.settings.integrator.linear_solver == LinearSolverKind::kEigenDense);
+  CHECK_THAT(errorOf(replace(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: lu"), sid),
+             Catch::Contains("key 'integrator.linear_solver'"));
+}
+
 TEST_CASE("scene: structured Jacobian of axisymmetric bodies in contact is the dense one",
           "[scene]") {
   // Axisymmetric bodies have a constant mass matrix and no velocity-quadratic forces, so the
