@@ -1,5 +1,6 @@
 #include "preproc/body_config.h"
 
+#include <array>
 #include <map>
 
 #include "common/json_schema.h"
@@ -84,6 +85,62 @@ std::vector<int> perDirection(const YamlDocument& doc, const YAML::Node& node,
   return v;
 }
 
+const char* const kDirectionNames[3] = {"xi", "eta", "zeta"};
+
+// Why the boundary face of `patch` at the lower (upper = false) or upper end of direction
+// `dir` is degenerate, or "" if it is regular. Degenerate: its control net collapses along
+// another direction (every line of that direction is one point: an axis, a pole line, an
+// equator) or coincides with the opposite face (a closed seam). Such faces carry tied
+// control points, and a box or contact region touching them would refine or load a
+// degenerate point (DESIGN.md). A face that merely lies on the symmetry axis, like the
+// edge xi = 0 of the half-disk (x = 0, u_r = 0 there, but not collapsed), is regular.
+// Tolerance: 1e-12 of the patch size, as for tied control points.
+std::string degenerateFace(const NurbsPatch& patch, int dir, bool upper) {
+  const Eigen::MatrixXd& X = patch.points();
+  const double tol = 1e-12 * (X.colwise().maxCoeff() - X.colwise().minCoeff()).maxCoeff();
+  const int d = patch.paramDim();
+  std::array<int, 3> n{1, 1, 1};
+  for (int a = 0; a < d; ++a) n[a] = patch.numBasis(a);
+  const auto same = [&](std::array<int, 3> i, std::array<int, 3> j) {
+    return (X.row(patch.linearIndex(i)) - X.row(patch.linearIndex(j))).norm() <= tol;
+  };
+  const auto allOnFace = [&](const auto& test) {  // test(i) for every i on the face
+    std::array<int, 3> lo{0, 0, 0}, hi = n, i{};
+    lo[dir] = upper ? n[dir] - 1 : 0;
+    hi[dir] = lo[dir] + 1;
+    for (i[2] = lo[2]; i[2] < hi[2]; ++i[2])
+      for (i[1] = lo[1]; i[1] < hi[1]; ++i[1])
+        for (i[0] = lo[0]; i[0] < hi[0]; ++i[0])
+          if (!test(i)) return false;
+    return true;
+  };
+  for (int b = 0; b < d; ++b) {
+    if (b == dir) continue;
+    if (allOnFace([&](std::array<int, 3> i) {
+          if (i[b] == 0) return true;
+          std::array<int, 3> j = i;
+          --j[b];
+          return same(i, j);
+        })) {
+      return Str() << "its control points collapse along " << kDirectionNames[b]
+                   << ": an axis, a pole line or a collapsed edge";
+    }
+  }
+  if (allOnFace([&](std::array<int, 3> i) {
+        std::array<int, 3> j = i;
+        j[dir] = upper ? 0 : n[dir] - 1;
+        return same(i, j);
+      })) {
+    return "it coincides with the opposite face: a closed seam";
+  }
+  return "";
+}
+
+// The common end of the error messages about degenerate faces.
+const char* const kDegenerateRule =
+    "boxes and contact regions must stay off collapsed faces and seams (faces on the "
+    "symmetry axis of an axisymmetric section are allowed)";
+
 void parseContact(const YamlDocument& doc, const YAML::Node& node, const NurbsPatch& patch,
                   ContactConfig* c) {
   if (!node) return;
@@ -96,6 +153,12 @@ void parseContact(const YamlDocument& doc, const YAML::Node& node, const NurbsPa
     throw inputError(doc, node["face"], "contact.face",
                      Str() << "face '" << face << "' does not exist on a patch with " << d
                            << " parametric directions");
+  }
+  const std::string faceWhy = degenerateFace(patch, c->direction, c->upper);
+  if (!faceWhy.empty()) {
+    throw inputError(doc, node["face"], "contact.face",
+                     Str() << "face '" << face << "' is degenerate (" << faceWhy << "); "
+                           << kDegenerateRule);
   }
   const YAML::Node region = node["region"];
   if (static_cast<int>(region.size()) != d - 1) {
@@ -114,6 +177,15 @@ void parseContact(const YamlDocument& doc, const YAML::Node& node, const NurbsPa
       throw inputError(doc, region[s], key,
                        Str() << "expected lo < hi inside the knot range [" << u0 << ", " << u1
                              << "] of direction " << a << ", found [" << lo << ", " << hi << "]");
+    }
+    for (const bool up : {false, true}) {
+      if ((up ? hi < u1 : lo > u0)) continue;
+      const std::string why = degenerateFace(patch, a, up);
+      if (!why.empty()) {
+        throw inputError(doc, region[s], key,
+                         Str() << "the region touches the degenerate face " << faceName(a, up)
+                               << " (" << why << "); " << kDegenerateRule);
+      }
     }
     c->bounds.push_back({lo, hi});
     ++s;
@@ -256,6 +328,22 @@ void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPat
     if (problem.dir >= 0) key = Str() << key << "[" << problem.dir << "]";
     throw inputError(doc, node, key,
                      Str() << "box of level " << problem.box + 1 << ": " << problem.reason);
+  }
+  for (int b = 0; b < nb; ++b) {
+    const ParamBox& box = c.hierarchy.boxes[b];
+    for (int a = 0; a < d; ++a) {
+      for (const bool up : {false, true}) {
+        // Bounds are snapped onto knot lines by validateBoxes: exact comparison.
+        if (up ? box.upper[a] < patch.knots(a).back() : box.lower[a] > patch.knots(a).front())
+          continue;
+        const std::string why = degenerateFace(patch, a, up);
+        if (!why.empty()) {
+          throw inputError(doc, boxes[b][a], Str() << "hierarchy.boxes[" << b << "][" << a << "]",
+                           Str() << "box of level " << b + 1 << " touches the degenerate face "
+                                 << faceName(a, up) << " (" << why << "); " << kDegenerateRule);
+        }
+      }
+    }
   }
 }
 

@@ -3,6 +3,9 @@
 // the hierarchical models are much smaller.
 #include <catch2/catch.hpp>
 
+#include <array>
+#include <cmath>
+#include <set>
 #include <string>
 
 #include "preproc/body_config.h"
@@ -17,7 +20,71 @@ std::vector<double> knotsIn(const KnotVector& U, double lo, double hi) {
   return k;
 }
 
-void checkPair(const std::string& stem, int n, double maxRatio) {
+// The elements that touch the contact face inside the contact region, as (lower, upper)
+// corners with the face direction's lower bound (the depth of the layer next to the face).
+using FaceElement = std::array<double, 5>;
+std::set<FaceElement> contactElements(const BodyConfig& c, const HierarchicalSpace& s) {
+  const int dn = c.contact.direction;
+  std::set<FaceElement> out;
+  for (int e = 0; e < s.numElements(); ++e) {
+    const ElementBox b = s.element(e);
+    const double face = c.contact.upper ? s.levelKnots(0)[dn].knots().back()
+                                        : s.levelKnots(0)[dn].knots().front();
+    if ((c.contact.upper ? b.upper[dn] : b.lower[dn]) != face) continue;
+    FaceElement f{};
+    f[0] = c.contact.upper ? b.lower[dn] : b.upper[dn];
+    bool inside = true;
+    int r = 0;
+    for (int a = 0; a < s.paramDim(); ++a) {
+      if (a == dn) continue;
+      // Elements overlapping the region's interior; they must lie inside it (checked below
+      // through the area sum).
+      inside = inside && b.upper[a] > c.contact.bounds[r][0] && b.lower[a] < c.contact.bounds[r][1];
+      f[1 + 2 * r] = b.lower[a];
+      f[2 + 2 * r] = b.upper[a];
+      ++r;
+    }
+    if (inside) out.insert(f);
+  }
+  return out;
+}
+
+// The contact elements of every model of a family are the same (paper Sect. 6: "the number
+// and size of predefined contact elements are identical for all six models") and tile the
+// contact region exactly.
+void checkSameContactElements(const std::string& stem, int from, int to) {
+  const std::string dir = std::string(FFRIGA_SOURCE_DIR) + "/configs/bodies/";
+  std::set<FaceElement> first;
+  for (int n = from; n <= to; ++n) {
+    for (const char* kind : {"_h", "_g"}) {
+      const BodyConfig c = loadBodyConfig(dir + stem + kind + std::to_string(n) + ".yaml");
+      INFO(stem << kind << n);
+      REQUIRE(c.contact.present);
+      const std::set<FaceElement> el = contactElements(c, bodySpace(c));
+      double area = 0.0, region = 1.0;
+      for (const auto& b : c.contact.bounds) region *= b[1] - b[0];
+      for (const FaceElement& f : el) {
+        double a = 1.0;
+        for (std::size_t r = 0; r < c.contact.bounds.size(); ++r) {
+          CHECK(f[1 + 2 * r] >= c.contact.bounds[r][0]);  // no element sticks out
+          CHECK(f[2 + 2 * r] <= c.contact.bounds[r][1]);
+          a *= f[2 + 2 * r] - f[1 + 2 * r];
+        }
+        area += a;
+      }
+      // Sums of O(100) products of knot spans: round-off only.
+      CHECK(std::abs(area - region) <= 1e-12 * region);
+      if (first.empty()) {
+        first = el;
+      } else {
+        // Dyadic knots (3D) and midpoints computed by the same formula: exact equality.
+        CHECK(el == first);
+      }
+    }
+  }
+}
+
+void checkPair(const std::string& stem, int n, double maxRatio, double maxFunctionRatio) {
   const std::string dir = std::string(FFRIGA_SOURCE_DIR) + "/configs/bodies/";
   const BodyConfig h = loadBodyConfig(dir + stem + "_h" + std::to_string(n) + ".yaml");
   const BodyConfig g = loadBodyConfig(dir + stem + "_g" + std::to_string(n) + ".yaml");
@@ -33,19 +100,30 @@ void checkPair(const std::string& stem, int n, double maxRatio) {
     CHECK(knotsIn(G.levelKnots(0)[a], fine.lower[a], fine.upper[a]) ==
           knotsIn(H.levelKnots(n - 1)[a], fine.lower[a], fine.upper[a]));
   }
-  // Function counts (ndof up to tied points): the acceptance ratio of issue 3.
-  CHECK(H.numFunctions() <= maxRatio * G.numFunctions());
+  // The acceptance ratio of issue 3 is on ndof (igaprep's count, tied points removed);
+  // the function counts meet it too.
+  CHECK(countDofs(H, h.model).ndof <= maxRatio * countDofs(G, g.model).ndof);
+  CHECK(H.numFunctions() <= maxFunctionRatio * G.numFunctions());
 }
 
 TEST_CASE("axisymmetric sphere: hierarchical models and global references", "[configs]") {
-  for (int n = 3; n <= 6; ++n) checkPair("sphere2d", n, 0.5);
+  for (int n = 3; n <= 6; ++n) checkPair("sphere2d", n, 0.5, 0.5);
 }
 
 TEST_CASE("solid sphere: hierarchical models and global references", "[configs]") {
-  // nlvl = 3 misses the 20 % target (see sphere3d_h3.yaml: ndof ratio 0.28, function ratio
-  // 0.32); 4 and 5 meet it.
-  checkPair("sphere3d", 3, 0.35);
-  for (int n = 4; n <= 5; ++n) checkPair("sphere3d", n, 0.2);
+  // ndof <= 20 % of the reference for every nlvl (issue 3). Function counts: 0.2 for 4 and
+  // 5; nlvl = 3 has 0.201 (its coarse level 0 has relatively more tied points on the axis,
+  // the equator and the seam than the reference, so its function ratio exceeds its ndof
+  // ratio 0.187), bounded by 0.21.
+  checkPair("sphere3d", 3, 0.2, 0.21);
+  for (int n = 4; n <= 5; ++n) checkPair("sphere3d", n, 0.2, 0.2);
+}
+
+// Not checked for the 2D family: there only the finest level reaches 10 um at the pole, the
+// contact region [0, 0.022624] also holds coarser elements in some models (sphere2d_g6: 16
+// elements, sphere2d_h3: 32).
+TEST_CASE("solid sphere: identical contact elements in all six models", "[configs]") {
+  checkSameContactElements("sphere3d", 3, 5);
 }
 
 TEST_CASE("HB and THB bodies count the same DOFs", "[configs]") {
