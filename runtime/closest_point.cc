@@ -11,12 +11,6 @@ namespace ffriga {
 
 namespace {
 
-// Per-thread parameter workspace of the Newton line search (storage reused).
-Eigen::VectorXd& trial_s() {
-  thread_local Eigen::VectorXd s;
-  return s;
-}
-
 // Element holding s; if s lies in a hole of the domain, the element whose box is nearest
 // (s is then moved into that box).
 int locate(const ExtractedSurface& surf, Eigen::VectorXd& s, int hint) {
@@ -57,7 +51,9 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
   const Eigen::VectorXd& lo = surf.domainLower();
   const Eigen::VectorXd& hi = surf.domainUpper();
   const double paramScale = (hi - lo).maxCoeff();
+  // Per-thread workspaces of the line search (storage reused, no allocation).
   thread_local SurfacePoint trial;
+  thread_local Eigen::VectorXd s;
   for (int it = 0; it < o.max_iterations; ++it) {
     p.element = locate(surf, p.s, p.element);
     surf.evaluate(p.element, p.s.data(), points, 2, p.point);
@@ -119,7 +115,6 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     // Backtracking: accept the first of step, step/2, ... that decreases phi = |r|^2 / 2
     // (Newton's full step near the solution; guards Gauss-Newton far from it).
     const double phi = 0.5 * r.squaredNorm();
-    Eigen::VectorXd& s = trial_s();
     s = p.s;
     int e = p.element;
     for (int k = 0; k < 30; ++k) {
