@@ -38,21 +38,18 @@ void BodyModel::setDamping(const Eigen::MatrixXd& De) {
 
 void BodyModel::checkDiagonal() {
   // Off-diagonal parts below 1e-8 of the largest diagonal entry only perturb the Newton
-  // matrix, which needs to be approximate only (modified Newton iteration).
+  // matrix, which needs to be approximate only (modified Newton iteration); the right-hand
+  // side takes the diagonal shortcut only when the off-diagonal parts are exactly zero.
   const FlexibleBodySid& s = *sid_;
-  auto isDiagonal = [](const Eigen::MatrixXd& A) {
-    const double scale = A.diagonal().cwiseAbs().maxCoeff();
-    const Eigen::MatrixXd off = A - Eigen::MatrixXd(A.diagonal().asDiagonal());
-    return off.cwiseAbs().maxCoeff() <= 1e-8 * scale;
-  };
   const int nq = s.nq();
-  diagonal_ = nq == 0 || (isDiagonal(s.Ke) && isDiagonal(De_) &&
-                          (s.Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() <= 1e-8);
-  auto exactlyDiagonal = [](const Eigen::MatrixXd& A) {
-    return (A - Eigen::MatrixXd(A.diagonal().asDiagonal())).isZero(0.0);
+  auto offDiagonal = [](const Eigen::MatrixXd& A) {
+    return (A - Eigen::MatrixXd(A.diagonal().asDiagonal())).cwiseAbs().maxCoeff();
   };
-  exactly_diagonal_ = nq == 0 || (exactlyDiagonal(s.Ke) && exactlyDiagonal(De_) &&
-                                  s.Me == Eigen::MatrixXd::Identity(nq, nq));
+  auto scale = [](const Eigen::MatrixXd& A) { return A.diagonal().cwiseAbs().maxCoeff(); };
+  const double offK = nq ? offDiagonal(s.Ke) : 0.0, offD = nq ? offDiagonal(De_) : 0.0;
+  const double offM = nq ? (s.Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() : 0.0;
+  diagonal_ = nq == 0 || (offK <= 1e-8 * scale(s.Ke) && offD <= 1e-8 * scale(De_) && offM <= 1e-8);
+  exactly_diagonal_ = nq == 0 || (offK == 0.0 && offD == 0.0 && offM == 0.0);
   k_ = s.Ke.diagonal();
   c_ = De_.diagonal();
 }
