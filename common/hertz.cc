@@ -25,6 +25,18 @@ double durationIntegral() {
 
 }  // namespace
 
+double hertzStiffness(const HertzSphere& a, const HertzSphere& b) {
+  for (const HertzSphere* s : {&a, &b}) {
+    FFRIGA_CHECK(
+        s->youngs_modulus > 0 && s->radius > 0 && s->poisson_ratio > -1 && s->poisson_ratio < 0.5,
+        "sphere E = " << s->youngs_modulus << ", R = " << s->radius);
+  }
+  const double Estar = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                              (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+  const double Rstar = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
+  return 4.0 / 3.0 * Estar * std::sqrt(Rstar);
+}
+
 HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v) {
   FFRIGA_CHECK(v > 0.0, "relative speed v = " << v);
   for (const HertzSphere* s : {&a, &b}) {
@@ -32,12 +44,9 @@ HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v) {
                      s->poisson_ratio < 0.5,
                  "sphere E = " << s->youngs_modulus << ", R = " << s->radius);
   }
-  const double Estar = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
-                              (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
-  const double Rstar = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
   HertzImpact h;
   h.effective_mass = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
-  h.stiffness = 4.0 / 3.0 * Estar * std::sqrt(Rstar);
+  h.stiffness = hertzStiffness(a, b);
   h.max_approach = std::pow(5.0 * h.effective_mass * v * v / (4.0 * h.stiffness), 0.4);
   h.max_force = h.stiffness * std::pow(h.max_approach, 1.5);
   h.duration = 2.0 * h.max_approach / v * durationIntegral();

@@ -33,6 +33,9 @@ struct HertzImpact {
   double time_of_max;     // T / 2, s
 };
 
+// K = 4/3 E* sqrt(R*) of F = K delta^(3/2), N/m^(3/2) (masses are not used).
+double hertzStiffness(const HertzSphere& a, const HertzSphere& b);
+
 // Central impact at relative normal speed v > 0 (m/s).
 HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v);
 

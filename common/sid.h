@@ -62,6 +62,9 @@ struct Marker {
   Eigen::VectorXd position;    // undeformed, body frame, m
   std::vector<int> functions;  // control points with non-zero basis value
   Eigen::VectorXd values;      // R_k(xi) of those control points
+  // Rotation modes: the small rotation of the material at the marker per unit q,
+  // Psi = 1/2 curl Phi (3 x nq, rad per unit q); empty when the SID carries none.
+  Eigen::MatrixXd Psi;
 };
 
 struct FlexibleBodySid {

@@ -11,10 +11,10 @@
 
 #include "common/cli.h"
 #include "common/version.h"
-#include "runtime/hertz_reference.h"
-#include "runtime/result_writer.h"
-#include "runtime/scene.h"
-#include "runtime/simulation.h"
+#include "runtime/contact/hertz_reference.h"
+#include "runtime/output/result_writer.h"
+#include "runtime/system/scene.h"
+#include "runtime/system/simulation.h"
 
 #if __has_include("common/sid_file.h")
 #include "common/sid_file.h"

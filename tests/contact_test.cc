@@ -1,10 +1,10 @@
 #include <catch2/catch.hpp>
 
-#include "runtime/bdf_integrator.h"
-#include "runtime/closest_point.h"
-#include "runtime/contact_pair.h"
-#include "runtime/floating_body.h"
-#include "runtime/multibody_system.h"
+#include "runtime/integration/bdf_integrator.h"
+#include "runtime/contact/closest_point.h"
+#include "runtime/contact/contact_pair.h"
+#include "runtime/bodies/floating_body.h"
+#include "runtime/system/multibody_system.h"
 #include "surface_fixtures.h"
 #include "synthetic_bodies.h"
 #include "test_util.h"

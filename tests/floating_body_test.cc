@@ -1,10 +1,10 @@
-#include "runtime/floating_body.h"
+#include "runtime/bodies/floating_body.h"
 
 #include <catch2/catch.hpp>
 
-#include "runtime/axisymmetric_body.h"
-#include "runtime/bdf_integrator.h"
-#include "runtime/multibody_system.h"
+#include "runtime/bodies/axisymmetric_body.h"
+#include "runtime/integration/bdf_integrator.h"
+#include "runtime/system/multibody_system.h"
 #include "synthetic_bodies.h"
 
 using namespace ffriga;

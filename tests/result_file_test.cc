@@ -2,9 +2,9 @@
 
 #include <catch2/catch.hpp>
 
-#include "runtime/floating_body.h"
-#include "runtime/result_writer.h"
-#include "runtime/simulation.h"
+#include "runtime/bodies/floating_body.h"
+#include "runtime/output/result_writer.h"
+#include "runtime/system/simulation.h"
 #include "synthetic_bodies.h"
 
 using namespace ffriga;

@@ -11,7 +11,7 @@
 #include "common/json_schema.h"
 #include "common/refinement.h"
 #include "common/schemas.h"
-#include "runtime/scene.h"
+#include "runtime/system/scene.h"
 #include "surface_fixtures.h"
 
 using namespace ffriga;

@@ -1,13 +1,13 @@
-// The structured Newton matrix (runtime/structured_newton.h): the Woodbury solve equals a
+// The structured Newton matrix (runtime/integration/structured_newton.h): the Woodbury solve equals a
 // dense solve of I - gamma (D + U V^T), and the multibody system's structured Jacobian equals
 // its dense one where the neglected terms vanish.
 #include <cmath>
 
 #include <catch2/catch.hpp>
 
-#include "runtime/floating_body.h"
-#include "runtime/multibody_system.h"
-#include "runtime/structured_newton.h"
+#include "runtime/bodies/floating_body.h"
+#include "runtime/system/multibody_system.h"
+#include "runtime/integration/structured_newton.h"
 #include "synthetic_bodies.h"
 #include "test_util.h"
 

@@ -8,7 +8,7 @@
 #include <Eigen/Dense>
 
 #include "common/sid.h"
-#include "runtime/rotation.h"
+#include "runtime/bodies/rotation.h"
 
 namespace ffriga::test {
 

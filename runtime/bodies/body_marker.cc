@@ -1,0 +1,29 @@
+#include "runtime/bodies/body_marker.h"
+
+#include "common/error.h"
+
+namespace ffriga {
+
+BodyMarker markerFromSid(const FlexibleBodySid& sid, const Marker& m, int nq) {
+  FFRIGA_CHECK(sid.space_dim == 3, "markerFromSid needs 3D SID data");
+  BodyMarker b;
+  b.name = m.name;
+  b.x0 = m.position.head<3>();
+  b.Phi = Eigen::MatrixXd::Zero(3, nq);
+  for (std::size_t j = 0; j < m.functions.size() && nq > 0; ++j)
+    b.Phi += m.values(static_cast<int>(j)) * sid.Phi.middleRows(3 * m.functions[j], 3);
+  b.rotation_modes = nq == 0 || m.Psi.rows() == 3;
+  b.Psi = b.rotation_modes && nq > 0 ? m.Psi : Eigen::MatrixXd::Zero(3, nq);
+  return b;
+}
+
+BodyMarker fixedMarker(const std::string& name, const Eigen::Vector3d& x0) {
+  BodyMarker b;
+  b.name = name;
+  b.x0 = x0;
+  b.Phi.resize(3, 0);
+  b.Psi.resize(3, 0);
+  return b;
+}
+
+}  // namespace ffriga

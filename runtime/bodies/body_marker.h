@@ -1,0 +1,49 @@
+// A marker: a material point of a body with the small rotation of the material there, as
+// joints, force elements and sensors use it (DESIGN.md "Multibody").
+//
+//   position (body frame)    p(q) = x0 + Phi q                      (Phi: 3 x nq, m per unit q)
+//   rotation of the material theta(q) = Psi q,  Psi = 1/2 curl Phi   (3 x nq, rad per unit q)
+// A vector u0 attached to the material at the marker (a joint axis) becomes, to first order
+// in q like the SID's invariants (common/sid.h), u(q) = u0 + (Psi q) x u0.
+//
+// Markers of a SID body come from the SID (common/sid.h Marker: Phi from the basis values
+// and the control points' modes); a rigid or frozen body's markers are fixed points (Phi,
+// Psi with no columns). The ground's "marker" is a fixed inertial point.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "common/sid.h"
+
+namespace ffriga {
+
+struct BodyMarker {
+  std::string name;
+  Eigen::Vector3d x0 = Eigen::Vector3d::Zero();  // undeformed, body frame, m
+  Eigen::MatrixXd Phi;                           // 3 x nq translation modes
+  Eigen::MatrixXd Psi;                           // 3 x nq rotation modes
+  bool rotation_modes = true;  // false: the SID gives no Psi (then nothing may use the
+                               // marker's rotation while the body has nq > 0)
+};
+
+// Marker `m` of a 3D SID with nq elastic coordinates (nq = 0 for a frozen body).
+BodyMarker markerFromSid(const FlexibleBodySid& sid, const Marker& m, int nq);
+
+class FloatingBody3d;
+
+// One end of a joint or force element: a marker of a body, or a point of the ground.
+struct MarkerEnd {
+  int body = -1;                          // index in the system; -1: the ground
+  const FloatingBody3d* model = nullptr;  // nullptr for the ground
+  BodyMarker marker;                      // the ground's: x0 is an inertial point
+  // Joints only: the joint frame, columns e1 e2 e3, in body-frame components (ground:
+  // inertial), set by Joint::setFrame.
+  Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+};
+
+// A fixed point of a rigid body (or of the ground): no modes.
+BodyMarker fixedMarker(const std::string& name, const Eigen::Vector3d& x0);
+
+}  // namespace ffriga

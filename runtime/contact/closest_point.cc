@@ -1,0 +1,214 @@
+#include "runtime/contact/closest_point.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "common/rational_basis.h"
+
+namespace ffriga {
+
+namespace {
+
+// Element holding s; if s lies in a hole of the domain, the element whose box is nearest
+// (s is then moved into that box).
+int locate(const ExtractedSurface& surf, Eigen::VectorXd& s, int hint) {
+  const int d = surf.dim();
+  auto inside = [&](int e) {
+    for (int a = 0; a < d; ++a) {
+      if (s(a) < surf.surface().element_lower(e, a) || s(a) > surf.surface().element_upper(e, a))
+        return false;
+    }
+    return true;
+  };
+  if (hint >= 0 && hint < surf.numElements() && inside(hint)) return hint;
+  const int e = surf.findElement(s.data());
+  if (e >= 0) return e;
+  int best = 0;
+  double bestDist = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < surf.numElements(); ++k) {
+    const Eigen::VectorXd c = s.cwiseMax(surf.elementLower(k)).cwiseMin(surf.elementUpper(k));
+    const double dist = (c - s).squaredNorm();
+    if (dist < bestDist) {
+      bestDist = dist;
+      best = k;
+    }
+  }
+  s = s.cwiseMax(surf.elementLower(best)).cwiseMin(surf.elementUpper(best));
+  return best;
+}
+
+// Small fixed-capacity types (parametric dimension <= 2, space dimension <= 3): the Newton
+// loop runs for every collocation point at every right-hand side and must not allocate.
+using ParamVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
+using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
+using SpaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+
+bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
+            const ProjectionOptions& o, SurfaceProjection& p) {
+  const int d = surf.dim();
+  const Eigen::VectorXd& lo = surf.domainLower();
+  const Eigen::VectorXd& hi = surf.domainUpper();
+  const double paramScale = (hi - lo).maxCoeff();
+  // Per-thread workspaces of the line search (storage reused, no allocation).
+  thread_local SurfacePoint trial;
+  thread_local Eigen::VectorXd s;
+  for (int it = 0; it < o.max_iterations; ++it) {
+    p.element = locate(surf, p.s, p.element);
+    surf.evaluate(p.element, p.s.data(), points, 2, p.point);
+    const SpaceVector r = p.point.x - x;
+    const Eigen::MatrixXd& X = p.point.dx;
+    const ParamVector g = X.transpose() * r;
+    ParamMatrix H = X.transpose() * X;
+    const ParamMatrix G = H;
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b)
+        H(a, b) += r.dot(p.point.ddx.col(secondDerivativeRow(d, a, b) - 1 - d));
+    // Active bounds: at the domain boundary with the descent direction -g pointing out.
+    int freeDirs[2], nf = 0;
+    bool held[2] = {false, false};
+    for (int a = 0; a < d; ++a) {
+      const bool atLo = p.s(a) <= lo(a) && g(a) > 0.0;
+      const bool atHi = p.s(a) >= hi(a) && g(a) < 0.0;
+      held[a] = atLo || atHi;
+      if (!held[a]) freeDirs[nf++] = a;
+    }
+    // Converged if the gradient vanishes in every free direction (Eq. 15).
+    const double length = (X.colwise().norm().maxCoeff()) * paramScale;
+    bool small = true;
+    for (int i = 0; i < nf; ++i) {
+      const int a = freeDirs[i];
+      if (std::abs(g(a)) > o.tolerance * X.col(a).norm() * (r.norm() + length)) small = false;
+    }
+    if (small) {
+      // Eq. (15) holds in the free directions. A direction held at the domain boundary
+      // (x_C beyond the surface's edge) makes the foot point improper if the gradient there
+      // is more than round-off. Free directions are never tested again: for a point close
+      // to the surface, |r| -> 0 and a test relative to |r| would reject converged interior
+      // points and switch their contact force off discontinuously.
+      p.converged = true;
+      p.orthogonal = true;
+      for (int a = 0; a < d; ++a) {
+        if (held[a] && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
+          p.orthogonal = false;
+      }
+      surf.evaluate(p.element, p.s.data(), points, 1, p.point);
+      return true;
+    }
+    // Newton step on the free directions (Gauss-Newton if H is not positive definite there).
+    ParamMatrix Hf(nf, nf), Gf(nf, nf);
+    ParamVector gf(nf);
+    for (int i = 0; i < nf; ++i) {
+      gf(i) = g(freeDirs[i]);
+      for (int j = 0; j < nf; ++j) {
+        Hf(i, j) = H(freeDirs[i], freeDirs[j]);
+        Gf(i, j) = G(freeDirs[i], freeDirs[j]);
+      }
+    }
+    Eigen::LLT<ParamMatrix> llt(Hf);
+    const ParamVector sf = llt.info() == Eigen::Success ? ParamVector(-llt.solve(gf))
+                                                        : ParamVector(-Gf.ldlt().solve(gf));
+    ParamVector step = ParamVector::Zero(d);
+    for (int i = 0; i < nf; ++i) step(freeDirs[i]) = sf(i);
+    if (!step.allFinite()) return false;
+    // Backtracking: accept the first of step, step/2, ... that decreases phi = |r|^2 / 2
+    // (Newton's full step near the solution; guards Gauss-Newton far from it).
+    const double phi = 0.5 * r.squaredNorm();
+    s = p.s;
+    int e = p.element;
+    for (int k = 0; k < 30; ++k) {
+      s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
+      e = locate(surf, s, p.element);
+      surf.evaluate(e, s.data(), points, 0, trial);
+      if (0.5 * (trial.x - x).squaredNorm() <= phi) break;
+      step *= 0.5;
+    }
+    if ((s - p.s).norm() <= 1e-15 * paramScale) {
+      // No progress possible: a (constrained) minimum to round-off.
+      p.converged = true;
+      p.orthogonal = true;
+      for (int a = 0; a < d; ++a) {
+        const bool bound = s(a) <= lo(a) || s(a) >= hi(a);
+        if (bound && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
+          p.orthogonal = false;
+      }
+      surf.evaluate(p.element, p.s.data(), points, 1, p.point);
+      return true;
+    }
+    p.s = s;
+    p.element = e;
+  }
+  return false;
+}
+
+std::vector<SurfaceProjection> nearestSamples(const ExtractedSurface& surf,
+                                              const Eigen::MatrixXd& points,
+                                              const Eigen::VectorXd& x, int n, int count) {
+  const int d = surf.dim();
+  // Best sample of every element, then the `count` nearest of those.
+  std::vector<std::pair<double, SurfaceProjection>> perElement;
+  SurfacePoint sp;
+  Eigen::VectorXd s(d);
+  for (int e = 0; e < surf.numElements(); ++e) {
+    const Eigen::VectorXd lo = surf.elementLower(e), hi = surf.elementUpper(e);
+    const int n1 = d == 2 ? n : 1;
+    std::pair<double, SurfaceProjection> best{std::numeric_limits<double>::infinity(), {}};
+    for (int j = 0; j < n1; ++j) {
+      for (int i = 0; i < n; ++i) {
+        s(0) = lo(0) + (hi(0) - lo(0)) * (i + 0.5) / n;
+        if (d == 2) s(1) = lo(1) + (hi(1) - lo(1)) * (j + 0.5) / n;
+        surf.evaluate(e, s.data(), points, 0, sp);
+        const double dist = (sp.x - x).squaredNorm();
+        if (dist < best.first) {
+          best.first = dist;
+          best.second.element = e;
+          best.second.s = s;
+        }
+      }
+    }
+    perElement.push_back(best);
+  }
+  const int m = std::min<int>(count, static_cast<int>(perElement.size()));
+  std::partial_sort(perElement.begin(), perElement.begin() + m, perElement.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<SurfaceProjection> out;
+  for (int i = 0; i < m; ++i) out.push_back(perElement[i].second);
+  return out;
+}
+
+}  // namespace
+
+SurfaceProjection closestPoint(const ExtractedSurface& surface, const Eigen::MatrixXd& points,
+                               const Eigen::VectorXd& x, const SurfaceProjection* start,
+                               const ProjectionOptions& options) {
+  SurfaceProjection p;
+  if (start && start->element >= 0 && start->s.size() == surface.dim()) {
+    p.element = start->element;
+    p.s = start->s;
+    if (newton(surface, points, x, options, p)) return p;
+  }
+  // Cold start: Newton from the nearest samples of the few nearest elements (distinct
+  // basins of a curved surface), keeping the closest converged foot point.
+  const std::vector<SurfaceProjection> starts =
+      nearestSamples(surface, points, x, options.samples_per_element, options.restarts);
+  SurfaceProjection best;
+  double bestDist = std::numeric_limits<double>::infinity();
+  for (const SurfaceProjection& start : starts) {
+    p = start;
+    if (!newton(surface, points, x, options, p)) continue;
+    const double dist = (p.point.x - x).squaredNorm();
+    if (dist < bestDist) {
+      bestDist = dist;
+      best = p;
+    }
+  }
+  if (best.converged) return best;
+  p = starts.front();
+  p.converged = false;
+  p.orthogonal = false;
+  surface.evaluate(p.element, p.s.data(), points, 1, p.point);
+  return p;
+}
+
+}  // namespace ffriga

@@ -1,0 +1,106 @@
+// Penalty contact between the contact surfaces of two bodies by collocation (paper Sect. 4).
+//
+// For a contact body C and a target body T: every collocation (Botella) point i of C, fixed
+// in surface parameters, is at x_C = origin_C + A_C (x0_i + Phi_i q_C) with x0_i and
+// Phi_i = sum_k R_k(xi_i) Phi_k precomputed once. Its closest point x_T(s) on T's deformed
+// surface solves Eq. (15) (runtime/contact/closest_point.h); the normal gap is (Eq. 16)
+//   g_n = n^T (x_C - x_T(s)),  n the unit outward normal of T at s,
+// and for g_n < 0 the penalty force on C at x_C is (Eq. 17)
+//   f_i = -c_p g_n w_i n,   w_i the collocation weight (m^2; axisymmetric: the weight along
+//                           the meridian (m) times 2 pi r_i, the ring of radius r_i (m)),
+// with -f_i on T at x_T. UNITS: c_p is a pressure per unit penetration, N/m^3 (= Pa/m).
+// Roles are switched and the two results averaged (factor 1/2 each). Generalised forces
+// (Eq. 18): translational A^T f, rotational x x A^T f, elastic Phi(x)^T A^T f for the body
+// point x; on T the elastic part is sum_k R_k(s) Phi_k^T A_T^T (-f).
+// Pre-check: if the world bounding boxes of the two surfaces' control points (which hold
+// the surfaces, NURBS convex hull property), inflated by `search_margin`, do not overlap,
+// nothing is evaluated; single points outside the target's inflated box are skipped.
+// The collocation loop runs in parallel (OpenMP); the sums are formed serially afterwards
+// in a fixed order, so results do not depend on the number of threads.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/extracted_surface.h"
+#include "runtime/bodies/body_model.h"
+#include "runtime/contact/closest_point.h"
+
+namespace ffriga {
+
+// Diagnostics of one pair at one state (averaged over the two roles).
+struct ContactState {
+  double normal_force = 0.0;  // N, magnitude of the resultant contact force on body A
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, resultant on body A, inertial
+                                                    // (axisymmetric: (0, F_y, 0), the ring)
+  double max_penetration = 0.0;                     // m, largest -g_n over both roles (0 if apart)
+  int active_points = 0;                            // collocation points with g_n < 0, both roles
+  double energy = 0.0;          // J, penalty energy sum 1/2 c_p g_n^2 w_i, averaged
+  int projection_failures = 0;  // closest-point searches that did not converge
+};
+
+struct ContactOptions {
+  double penalty = 0.0;         // c_p, N/m^3
+  bool both_roles = true;       // average A->B and B->A (paper); else A is the contact body
+  double search_margin = -1.0;  // m; < 0: 10 % of the larger surface's bounding box size
+};
+
+// Linearisation of one active collocation point for the Newton matrix (Eq. 17-18): with
+// g = n^T (x_C - x_T) and h_C = bvC phi, h_T = -bvT phi, phi = -k g, k = c_p w_i (role factor
+// included):  d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T  (change of n neglected).
+struct ContactStiffnessTerm {
+  int body_c = 0, body_t = 0;  // system body indices
+  double k = 0.0;              // N/m
+  Eigen::VectorXd bvC, bpC, bvT, bpT;
+};
+
+class ContactPair {
+ public:
+  ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b, const BodyModel& B,
+              int surfaceB, const ContactOptions& options);
+
+  const std::string& name() const { return name_; }
+  int bodyA() const { return index_[0]; }
+  int bodyB() const { return index_[1]; }
+  const ContactOptions& options() const { return options_; }
+
+  // Linearisation of the active points of the last evaluate().
+  const std::vector<ContactStiffnessTerm>& stiffnessTerms() const { return terms_; }
+  // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
+  // fills `state` if given.
+  void evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B, const BodyPose& pb,
+                double* hA, double* hB, ContactState* state);
+
+ private:
+  struct Side {
+    ExtractedSurface surface;
+    std::vector<int> cps;               // body control points of the surface
+    Eigen::MatrixXd P0;                 // ncp x d, all body control points (undeformed)
+    Eigen::MatrixXd PhiS;               // (cps.size() * d) x nq, rows of Phi of the surface points
+    Eigen::MatrixXd xc0;                // nc x d, collocation points, undeformed body frame
+    std::vector<Eigen::MatrixXd> PhiC;  // nc matrices d x nq
+    Eigen::VectorXd weight;             // nc, collocation weight incl. the ring factor (m^2)
+    std::vector<SurfaceProjection> cache;  // warm starts, one per collocation point
+  };
+  struct World {
+    Eigen::MatrixXd points;  // ncp x d, deformed control points in world coordinates
+    Eigen::VectorXd lo, hi;  // bounding box of the surface's points
+  };
+  void setupSide(Side& side, const BodyModel& body, int surface);
+  World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
+  void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
+                 const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
+                 ContactState* state);
+
+  std::string name_;
+  std::vector<ContactStiffnessTerm> terms_;
+  int index_[2];
+  ContactOptions options_;
+  Side side_[2];
+  int dim_ = 3;
+  double margin_ = 0.0;
+};
+
+}  // namespace ffriga

@@ -1,0 +1,23 @@
+// Hertz's prediction (common/hertz.h) for a contact pair of a scene whose two bodies are
+// spheres: both SIDs come from body files with geometry type half_disk or sphere (the SID
+// carries the body file's text), and the scene gives their initial positions and
+// velocities. The approach speed is the relative velocity along the line of centres at
+// t = 0. Used by ffrsim to print the maximum force and contact duration next to Hertz.
+#pragma once
+
+#include <optional>
+
+#include "common/hertz.h"
+#include "runtime/system/scene.h"
+
+namespace ffriga {
+
+struct HertzReference {
+  HertzImpact impact;
+  double approach_speed = 0.0;  // m/s
+};
+
+// Empty when a body is not a sphere or the bodies do not approach each other.
+std::optional<HertzReference> hertzReference(const Scene& scene, int pair);
+
+}  // namespace ffriga

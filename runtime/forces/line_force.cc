@@ -1,0 +1,36 @@
+#include "runtime/forces/line_force.h"
+
+#include <cmath>
+
+#include "common/error.h"
+#include "runtime/bodies/marker_kinematics.h"
+
+namespace ffriga {
+
+LineForce::LineForce(std::string name, MarkerEnd a, MarkerEnd b)
+    : name_(std::move(name)), a_(std::move(a)), b_(std::move(b)) {
+  FFRIGA_CHECK(b_.model != nullptr, "force element '" << name_ << "': end b must be a body");
+}
+
+void LineForce::addForces(const double* spA, const double* svA, const double* spB,
+                          const double* svB, double* ha, double* hb, LineForceState* state) const {
+  MarkerKinematics ka, kb;
+  if (a_.model)
+    markerPoint(*a_.model, spA, svA, a_.marker, ka);
+  else
+    groundKinematics(a_.marker.x0, ka);
+  markerPoint(*b_.model, spB, svB, b_.marker, kb);
+  const Eigen::Vector3d d = kb.value - ka.value;
+  const double l = d.norm();
+  if (!(l > 0.0))
+    throw ComputeError(Str() << "force element '" << name_ << "': its two points coincide "
+                             << "(no line of action)");
+  const Eigen::Vector3d n = d / l;
+  const double rate = n.dot(kb.rate - ka.rate);
+  const double T = tension(l, rate);
+  if (a_.model) addMarkerForce(*a_.model, spA, a_.marker, T * n, ha);
+  addMarkerForce(*b_.model, spB, b_.marker, -T * n, hb);
+  if (state) *state = LineForceState{l, rate, T, energy(l)};
+}
+
+}  // namespace ffriga

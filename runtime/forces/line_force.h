@@ -1,0 +1,47 @@
+// Force elements that act along the line between two marker points (DESIGN.md: contact
+// pairs, spring-dampers and Hertz point contact are force elements of one kind): with
+// d = R_b - R_a, length l = |d|, direction n = d / l and rate dl/dt = n . (dR_b/dt - dR_a/dt)
+// (runtime/bodies/marker_kinematics.h), a tension T(l, dl/dt) (N, > 0 pulls the ends
+// together) acts as the force +T n on end a and -T n on end b; their generalised forces are
+// G^T f at each marker (Eq. 18 for a point force). Laws: runtime/forces/spring_damper.h,
+// runtime/forces/hertz_point_contact.h.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "runtime/bodies/body_marker.h"
+
+namespace ffriga {
+
+struct LineForceState {
+  double length = 0.0;   // m
+  double rate = 0.0;     // m/s
+  double tension = 0.0;  // N (> 0 pulls together; negative: pushes apart)
+  double energy = 0.0;   // J, potential of the conservative part
+};
+
+class LineForce {
+ public:
+  LineForce(std::string name, MarkerEnd a, MarkerEnd b);
+  virtual ~LineForce() = default;
+  const std::string& name() const { return name_; }
+  const MarkerEnd& end(int i) const { return i == 0 ? a_ : b_; }
+  virtual const char* kind() const = 0;
+
+  // Adds the generalised forces at the ends' states (nullptr for the ground) to ha, hb
+  // (each body's numVelocities entries; ha unused for the ground).
+  void addForces(const double* spA, const double* svA, const double* spB, const double* svB,
+                 double* ha, double* hb, LineForceState* state) const;
+
+ protected:
+  virtual double tension(double length, double rate) const = 0;
+  virtual double energy(double length) const = 0;
+
+ private:
+  std::string name_;
+  MarkerEnd a_, b_;
+};
+
+}  // namespace ffriga

@@ -1,0 +1,218 @@
+#include "runtime/output/result_writer.h"
+
+#include "common/error.h"
+#include "runtime/bodies/axisymmetric_body.h"
+
+namespace ffriga {
+
+using h5::Handle;
+
+namespace {
+// Checked HDF5 call of the result file (common/hdf5_io.h: ComputeError naming the file).
+hid_t check(hid_t status, const std::string& what, const std::string& file) {
+  return h5::Context{file}.check(status, what);
+}
+}  // namespace
+
+ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& system,
+                           const std::string& created_by, const std::string& scene_yaml,
+                           int flush_rows)
+    : path_(path), flush_rows_(flush_rows) {
+  h5::silenceErrors();
+  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (f < 0) throw InputError(Str() << path << ": cannot create the result file");
+  file_ = Handle(f, H5Fclose);
+  setAttribute("format", std::string(kResultFormat));
+  setAttribute("format_version", static_cast<long>(kResultFormatVersion));
+  setAttribute("created_by", created_by);
+  setAttribute("scene_yaml", scene_yaml);
+  setAttribute("status", std::string("running"));
+  time_ = &create(f, "time", 0, "s", "output times");
+  Handle bodies = group(f, "bodies");
+  for (int b = 0; b < system.numBodies(); ++b) {
+    const BodyModel& body = system.body(b);
+    Handle g = group(bodies.id(), body.name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "model", body.sid().model);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "sid_name", body.sid().name);
+    BodySeries s;
+    s.position = &create(g.id(), "position", 3, "m", "reference point r_R, inertial");
+    s.orientation = &create(g.id(), "orientation", 4, "1",
+                            "unit quaternion (p0, p1, p2, p3), body to inertial");
+    s.velocity = &create(g.id(), "velocity", 3, "m/s", "velocity of r_R, body components");
+    s.angular_velocity =
+        &create(g.id(), "angular_velocity", 3, "rad/s", "angular velocity, body components");
+    const int nq = std::max(body.nq(), 1);
+    s.q = &create(g.id(), "q", nq, "kg^(1/2) m", "elastic coordinates (mass-normalised modes)");
+    s.qdot = &create(g.id(), "qdot", nq, "kg^(1/2) m/s", "elastic velocities");
+    bodies_.push_back(s);
+  }
+  Handle contacts = group(f, "contacts");
+  for (int c = 0; c < system.numContacts(); ++c) {
+    const ContactPair& pair = system.contact(c);
+    Handle g = group(contacts.id(), pair.name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "body_a", system.body(pair.bodyA()).name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "body_b", system.body(pair.bodyB()).name());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "penalty_factor", pair.options().penalty);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "penalty_factor_unit", std::string("N/m^3"));
+    ContactSeries s;
+    s.normal_force = &create(g.id(), "normal_force", 0, "N",
+                             "magnitude of the resultant contact force on body_a "
+                             "(axisymmetric: over the whole ring)");
+    s.force = &create(g.id(), "force", 3, "N", "resultant contact force on body_a, inertial");
+    s.max_penetration = &create(g.id(), "max_penetration", 0, "m", "largest -g_n");
+    s.active_points = &create(g.id(), "active_points", 0, "1",
+                              "collocation points in contact (both roles)", true);
+    s.projection_failures = &create(g.id(), "projection_failures", 0, "1",
+                                    "closest-point searches that did not converge", true);
+    contacts_.push_back(s);
+  }
+  Handle energy = group(f, "energy");
+  kinetic_ = &create(energy.id(), "kinetic", 0, "J", "kinetic energy, all bodies");
+  elastic_ = &create(energy.id(), "elastic", 0, "J", "elastic energy 1/2 q^T Ke q, all bodies");
+  contact_ = &create(energy.id(), "contact", 0, "J", "penalty energy, all contact pairs");
+  gravity_ = &create(energy.id(), "gravity", 0, "J", "potential energy of gravity");
+  flush();
+}
+
+ResultWriter::~ResultWriter() {
+  try {
+    close();
+  } catch (...) {
+    // Destructors must not throw; close() explicitly to see errors.
+  }
+}
+
+Handle ResultWriter::group(hid_t parent, const std::string& name) {
+  return Handle(check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                      "H5Gcreate2 '" + name + "'", path_),
+                H5Gclose);
+}
+
+ResultWriter::Series& ResultWriter::create(hid_t parent, const std::string& name, int cols,
+                                           const std::string& unit, const std::string& description,
+                                           bool integer) {
+  auto s = std::make_unique<Series>();
+  s->cols = cols;
+  s->integer = integer;
+  const int rank = cols == 0 ? 1 : 2;
+  const hsize_t dims[2] = {0, static_cast<hsize_t>(cols)};
+  const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(cols)};
+  const hsize_t chunk[2] = {256, static_cast<hsize_t>(std::max(cols, 1))};
+  Handle space(check(H5Screate_simple(rank, dims, maxdims), "H5Screate_simple", path_), H5Sclose);
+  Handle plist(check(H5Pcreate(H5P_DATASET_CREATE), "H5Pcreate", path_), H5Pclose);
+  check(H5Pset_chunk(plist.id(), rank, chunk), "H5Pset_chunk", path_);
+  const hid_t type = integer ? H5T_NATIVE_LONG : H5T_NATIVE_DOUBLE;
+  s->dataset = Handle(check(H5Dcreate2(parent, name.c_str(), type, space.id(), H5P_DEFAULT,
+                                       plist.id(), H5P_DEFAULT),
+                            "H5Dcreate2 '" + name + "'", path_),
+                      H5Dclose);
+  h5::writeAttribute(h5::Context{path_}, s->dataset.id(), "unit", unit);
+  h5::writeAttribute(h5::Context{path_}, s->dataset.id(), "description", description);
+  series_.push_back(std::move(s));
+  return *series_.back();
+}
+
+void ResultWriter::appendRow(Series& s, const double* row) {
+  const int rank = s.cols == 0 ? 1 : 2;
+  const hsize_t n = static_cast<hsize_t>(std::max(s.cols, 1));
+  const hsize_t newDims[2] = {static_cast<hsize_t>(rows_ + 1), n};
+  check(H5Dset_extent(s.dataset.id(), newDims), "H5Dset_extent", path_);
+  Handle fspace(check(H5Dget_space(s.dataset.id()), "H5Dget_space", path_), H5Sclose);
+  const hsize_t start[2] = {static_cast<hsize_t>(rows_), 0};
+  const hsize_t count[2] = {1, n};
+  check(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start, nullptr, count, nullptr),
+        "H5Sselect_hyperslab", path_);
+  Handle mspace(check(H5Screate_simple(rank, count, nullptr), "H5Screate_simple", path_), H5Sclose);
+  if (s.integer) {
+    std::vector<long> v(row, row + n);
+    check(
+        H5Dwrite(s.dataset.id(), H5T_NATIVE_LONG, mspace.id(), fspace.id(), H5P_DEFAULT, v.data()),
+        "H5Dwrite", path_);
+  } else {
+    check(H5Dwrite(s.dataset.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), H5P_DEFAULT, row),
+          "H5Dwrite", path_);
+  }
+}
+
+void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& system) {
+  FFRIGA_CHECK(file_.id() >= 0, "result file " << path_ << " is closed");
+  appendRow(*time_, &t);
+  for (int b = 0; b < system.numBodies(); ++b) {
+    const BodyModel& body = system.body(b);
+    const double* sp = y.data() + system.positionOffset(b);
+    const double* sv = y.data() + system.velocityOffset(b);
+    const BodySeries& s = bodies_[b];
+    double r[3], p[4], v[3], w[3] = {0, 0, 0};
+    Eigen::VectorXd q = Eigen::VectorXd::Zero(std::max(body.nq(), 1)), qd = q;
+    if (const auto* ax = dynamic_cast<const AxisymmetricBody*>(&body)) {
+      const double sgn = ax->axisSign();
+      r[0] = 0.0, r[1] = sp[0], r[2] = 0.0;
+      p[0] = sgn > 0 ? 1.0 : 0.0, p[1] = sgn > 0 ? 0.0 : 1.0, p[2] = 0.0, p[3] = 0.0;
+      v[0] = 0.0, v[1] = sgn * sv[0], v[2] = 0.0;
+    } else {
+      Eigen::Vector4d pq(sp[3], sp[4], sp[5], sp[6]);
+      pq.normalize();
+      for (int i = 0; i < 3; ++i) r[i] = sp[i], v[i] = sv[i], w[i] = sv[3 + i];
+      for (int i = 0; i < 4; ++i) p[i] = pq(i);
+    }
+    const int nr = body.numRigidPositions(), nv = body.numRigidVelocities();
+    for (int j = 0; j < body.nq(); ++j) q(j) = sp[nr + j], qd(j) = sv[nv + j];
+    appendRow(*s.position, r);
+    appendRow(*s.orientation, p);
+    appendRow(*s.velocity, v);
+    appendRow(*s.angular_velocity, w);
+    appendRow(*s.q, q.data());
+    appendRow(*s.qdot, qd.data());
+  }
+  std::vector<ContactState> states;
+  std::vector<Eigen::VectorXd> h;
+  system.contactForces(y.data(), h, &states);
+  double contactEnergy = 0.0;
+  for (int c = 0; c < system.numContacts(); ++c) {
+    const ContactState& st = states[c];
+    const ContactSeries& s = contacts_[c];
+    appendRow(*s.normal_force, &st.normal_force);
+    appendRow(*s.force, st.force.data());
+    appendRow(*s.max_penetration, &st.max_penetration);
+    const double active = st.active_points, failures = st.projection_failures;
+    appendRow(*s.active_points, &active);
+    appendRow(*s.projection_failures, &failures);
+    contactEnergy += st.energy;
+  }
+  SystemEnergies e;
+  for (int b = 0; b < system.numBodies(); ++b) {
+    const double* sp = y.data() + system.positionOffset(b);
+    e.kinetic += system.body(b).kineticEnergy(sp, y.data() + system.velocityOffset(b));
+    e.elastic += system.body(b).elasticEnergy(sp);
+    e.gravity += system.body(b).gravityEnergy(sp, system.gravity());
+  }
+  appendRow(*kinetic_, &e.kinetic);
+  appendRow(*elastic_, &e.elastic);
+  appendRow(*contact_, &contactEnergy);
+  appendRow(*gravity_, &e.gravity);
+  ++rows_;
+  if (rows_ % flush_rows_ == 0) flush();
+}
+
+void ResultWriter::flush() {
+  if (file_.id() >= 0) check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
+}
+
+void ResultWriter::setAttribute(const std::string& name, const std::string& value) {
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
+}
+void ResultWriter::setAttribute(const std::string& name, double value) {
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
+}
+void ResultWriter::setAttribute(const std::string& name, long value) {
+  h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
+}
+
+void ResultWriter::close() {
+  if (file_.id() < 0) return;
+  flush();
+  series_.clear();
+  file_.reset();
+}
+
+}  // namespace ffriga

@@ -1,0 +1,70 @@
+// The result file of ffrsim (HDF5; layout, units and version in schemas/result_format.md).
+//
+// The file grows as the run goes: every series is a chunked dataset with an unlimited first
+// dimension (one row per output time), rows are appended and the file is flushed every
+// `flush_rows` rows and on close, so a run that fails or is interrupted leaves a readable
+// file with every flushed output and the root attribute `status` saying why it stopped.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/hdf5_io.h"
+#include "runtime/system/multibody_system.h"
+
+namespace ffriga {
+
+constexpr const char* kResultFormat = "ffriga-result";
+constexpr int kResultFormatVersion = 1;
+
+class ResultWriter {
+ public:
+  // Creates (truncates) `path`; writes the root attributes format, format_version,
+  // created_by, scene_yaml and status = "running", and the layout of `system`.
+  ResultWriter(const std::string& path, const MultibodySystem& system,
+               const std::string& created_by, const std::string& scene_yaml, int flush_rows = 16);
+  ~ResultWriter();
+
+  // One output row at time t (s) for state y.
+  void append(double t, const Eigen::VectorXd& y, MultibodySystem& system);
+  void flush();
+  long rows() const { return rows_; }
+  // Root attributes (replaced if present): status, wall_time_s, solver statistics, ...
+  void setAttribute(const std::string& name, const std::string& value);
+  void setAttribute(const std::string& name, double value);
+  void setAttribute(const std::string& name, long value);
+  // Flushes and closes; later calls do nothing.
+  void close();
+
+ private:
+  struct Series {
+    h5::Handle dataset;
+    int cols = 1;  // 0: one-dimensional (scalar per row)
+    bool integer = false;
+  };
+  Series& create(hid_t group, const std::string& name, int cols, const std::string& unit,
+                 const std::string& description, bool integer = false);
+  void appendRow(Series& s, const double* row);
+  h5::Handle group(hid_t parent, const std::string& name);
+
+  std::string path_;
+  h5::Handle file_;
+  std::vector<std::unique_ptr<Series>> series_;
+  Series* time_ = nullptr;
+  struct BodySeries {
+    Series *position, *orientation, *velocity, *angular_velocity, *q, *qdot;
+  };
+  std::vector<BodySeries> bodies_;
+  struct ContactSeries {
+    Series *normal_force, *force, *max_penetration, *active_points, *projection_failures;
+  };
+  std::vector<ContactSeries> contacts_;
+  Series *kinetic_ = nullptr, *elastic_ = nullptr, *contact_ = nullptr, *gravity_ = nullptr;
+  long rows_ = 0;
+  int flush_rows_ = 16;
+};
+
+}  // namespace ffriga

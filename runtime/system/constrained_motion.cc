@@ -1,0 +1,152 @@
+// Joints and force elements of the multibody system: the constraint equations, the
+// multipliers of the acceleration-level constraints and the projection onto the position
+// and velocity constraints (formulas in runtime/system/multibody_system.h).
+#include <cmath>
+
+#include "common/error.h"
+#include "runtime/bodies/marker_kinematics.h"
+#include "runtime/system/multibody_system.h"
+
+namespace ffriga {
+
+void MultibodySystem::addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,
+                                    std::vector<LineForceState>* states) const {
+  if (states) states->assign(line_forces_.size(), LineForceState());
+  for (std::size_t f = 0; f < line_forces_.size(); ++f) {
+    const LineForce& e = *line_forces_[f];
+    const int a = e.end(0).body, b = e.end(1).body;
+    e.addForces(a >= 0 ? y + pos_offset_[a] : nullptr, a >= 0 ? y + vel_offset_[a] : nullptr,
+                y + pos_offset_[b], y + vel_offset_[b], a >= 0 ? h[a].data() : nullptr, h[b].data(),
+                states ? &(*states)[f] : nullptr);
+  }
+}
+
+void MultibodySystem::sensorState(const double* y, int s, Eigen::Vector3d& position,
+                                  Eigen::Vector3d& velocity) const {
+  const MarkerEnd& e = sensors_[s].end;
+  MarkerKinematics k;
+  markerPoint(*e.model, y + pos_offset_[e.body], y + vel_offset_[e.body], e.marker, k);
+  position = k.value;
+  velocity = k.rate;
+}
+
+std::vector<LineForceState> MultibodySystem::lineForceStates(const double* y) const {
+  std::vector<Eigen::VectorXd> h(bodies_.size());
+  for (int b = 0; b < numBodies(); ++b) h[b].setZero(bodies_[b]->numVelocities());
+  std::vector<LineForceState> states;
+  addLineForces(y, h, &states);
+  return states;
+}
+
+void MultibodySystem::constraintRows(const double* y, ConstraintRows& rows) const {
+  const int m = num_constraints_, nv = totalVelocities();
+  rows.g.resize(m);
+  rows.bias.resize(m);
+  rows.J.setZero(m, nv);
+  rows.joints.resize(joints_.size());
+  const int v0 = vel_offset_.empty() ? 0 : vel_offset_[0];
+  int row = 0;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const Joint& joint = *joints_[j];
+    const int a = joint.end(0).body, b = joint.end(1).body;
+    JointRows& r = rows.joints[j];
+    joint.evaluate(a >= 0 ? y + pos_offset_[a] : nullptr, a >= 0 ? y + vel_offset_[a] : nullptr,
+                   y + pos_offset_[b], y + vel_offset_[b], r);
+    const int k = joint.numEquations();
+    rows.g.segment(row, k) = r.g;
+    rows.bias.segment(row, k) = r.bias;
+    if (a >= 0) rows.J.block(row, vel_offset_[a] - v0, k, r.Ja.cols()) += r.Ja;
+    rows.J.block(row, vel_offset_[b] - v0, k, r.Jb.cols()) += r.Jb;
+    row += k;
+  }
+}
+
+void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd& J,
+                                         Eigen::MatrixXd& X, Eigen::LLT<Eigen::MatrixXd>& S) const {
+  const int v0 = vel_offset_[0];
+  X.setZero(J.cols(), J.rows());
+  for (int b = 0; b < numBodies(); ++b) {
+    const int c = vel_offset_[b] - v0, nv = bodies_[b]->numVelocities();
+    if (J.middleCols(c, nv).isZero(0.0)) continue;  // no joint at this body
+    Eigen::MatrixXd B = J.middleCols(c, nv).transpose();
+    bodies_[b]->solveMass(y + pos_offset_[b], B);
+    X.middleRows(c, nv) = B;
+  }
+  S.compute(J * X);
+  if (S.info() != Eigen::Success)
+    throw ComputeError(
+        "joints: the constraint matrix J M^-1 J^T is singular (redundant or "
+        "degenerate joints)");
+}
+
+void MultibodySystem::applyConstraints(const double* y, double* ydot) {
+  ConstraintRows rows;
+  constraintRows(y, rows);
+  Eigen::MatrixXd X;
+  Eigen::LLT<Eigen::MatrixXd> S;
+  constraintMobility(y, rows.J, X, S);
+  Eigen::Map<Eigen::VectorXd> a(ydot + vel_offset_[0], totalVelocities());
+  lambda_ = S.solve(-rows.bias - rows.J * a);
+  a += X * lambda_;
+}
+
+std::vector<JointReaction> MultibodySystem::jointReactions(const double* y) {
+  std::vector<JointReaction> out(joints_.size());
+  if (joints_.empty()) return out;
+  Eigen::VectorXd ydot(size_);
+  evaluateRates(y, ydot.data(), nullptr);  // sets lambda_; keeps lastRhsContacts()
+  ConstraintRows rows;
+  constraintRows(y, rows);
+  int row = 0;
+  for (std::size_t j = 0; j < joints_.size(); ++j) {
+    const int k = joints_[j]->numEquations(), b = joints_[j]->end(1).body;
+    out[j] = joints_[j]->reaction(y + pos_offset_[b], rows.joints[j], lambda_.segment(row, k));
+    row += k;
+  }
+  return out;
+}
+
+bool MultibodySystem::projectState(double* y) {
+  if (joints_.empty()) return true;
+  const int v0 = vel_offset_[0], nv = totalVelocities();
+  ConstraintRows rows;
+  Eigen::MatrixXd X;
+  Eigen::LLT<Eigen::MatrixXd> S;
+  Eigen::VectorXd dsp;
+  // Positions: Newton steps of the mass-metric projection. |g| <= 1e-13 (m, or 1 for
+  // directions) is a few hundred ulps of the scenes' lengths, reached in 1-3 steps.
+  constexpr double kTolerance = 1e-13;
+  bool converged = false;
+  for (int iter = 0; iter < 8; ++iter) {
+    constraintRows(y, rows);
+    if (rows.g.lpNorm<Eigen::Infinity>() <= kTolerance) {
+      converged = true;
+      break;
+    }
+    constraintMobility(y, rows.J, X, S);
+    const Eigen::VectorXd dz = -X * S.solve(rows.g);
+    for (int b = 0; b < numBodies(); ++b) {
+      const BodyModel& body = *bodies_[b];
+      double* sp = y + pos_offset_[b];
+      dsp.resize(body.numPositions());
+      body.positionRates(sp, dz.data() + (vel_offset_[b] - v0), dsp.data());
+      Eigen::Map<Eigen::VectorXd>(sp, body.numPositions()) += dsp;
+      body.normalize(sp);
+    }
+  }
+  if (!converged) return false;
+  // Velocities: one linear projection at the projected positions.
+  constraintMobility(y, rows.J, X, S);
+  Eigen::Map<Eigen::VectorXd> z(y + v0, nv);
+  z -= X * S.solve(rows.J * z);
+  return true;
+}
+
+bool MultibodySystem::project(double, const double* y, double* corr) {
+  Eigen::VectorXd p = Eigen::Map<const Eigen::VectorXd>(y, size_);
+  if (!projectState(p.data())) return false;
+  Eigen::Map<Eigen::VectorXd>(corr, size_) = p - Eigen::Map<const Eigen::VectorXd>(y, size_);
+  return true;
+}
+
+}  // namespace ffriga

@@ -1,0 +1,268 @@
+#include "runtime/system/multibody_system.h"
+
+#include <cmath>
+#include <limits>
+
+#include "common/error.h"
+
+namespace ffriga {
+
+int MultibodySystem::addBody(std::unique_ptr<BodyModel> body) {
+  bodies_.push_back(std::move(body));
+  layout();
+  return numBodies() - 1;
+}
+
+void MultibodySystem::addContact(std::unique_ptr<ContactPair> pair) {
+  FFRIGA_CHECK(pair->bodyA() < numBodies() && pair->bodyB() < numBodies(), "contact body index");
+  contacts_.push_back(std::move(pair));
+}
+
+void MultibodySystem::addJoint(std::unique_ptr<Joint> joint) {
+  for (int i = 0; i < 2; ++i) FFRIGA_CHECK(joint->end(i).body < numBodies(), "joint body index");
+  num_constraints_ += joint->numEquations();
+  joints_.push_back(std::move(joint));
+}
+
+void MultibodySystem::addLineForce(std::unique_ptr<LineForce> force) {
+  for (int i = 0; i < 2; ++i)
+    FFRIGA_CHECK(force->end(i).body < numBodies(), "force element body index");
+  line_forces_.push_back(std::move(force));
+}
+
+void MultibodySystem::layout() {
+  pos_offset_.clear();
+  vel_offset_.clear();
+  int n = 0;
+  for (const auto& b : bodies_) {
+    pos_offset_.push_back(n);
+    n += b->numPositions();
+  }
+  for (const auto& b : bodies_) {
+    vel_offset_.push_back(n);
+    n += b->numVelocities();
+  }
+  size_ = n;
+  h_.resize(bodies_.size());
+}
+
+void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
+                                    std::vector<ContactState>* states) {
+  h.resize(bodies_.size());
+  std::vector<BodyPose> poses(bodies_.size());
+  for (int b = 0; b < numBodies(); ++b) {
+    h[b].setZero(bodies_[b]->numVelocities());
+    if (!contacts_.empty()) poses[b] = bodies_[b]->pose(y + pos_offset_[b]);
+  }
+  if (states) states->assign(contacts_.size(), ContactState());
+  for (std::size_t c = 0; c < contacts_.size(); ++c) {
+    ContactPair& pair = *contacts_[c];
+    const int a = pair.bodyA(), b = pair.bodyB();
+    pair.evaluate(*bodies_[a], poses[a], *bodies_[b], poses[b], h[a].data(), h[b].data(),
+                  states ? &(*states)[c] : nullptr);
+  }
+}
+
+void MultibodySystem::rhs(double, const double* y, double* ydot) {
+  evaluateRates(y, ydot, &rhs_states_);
+}
+
+void MultibodySystem::evaluateRates(const double* y, double* ydot,
+                                    std::vector<ContactState>* states) {
+  contactForces(y, h_, states);
+  addLineForces(y, h_, nullptr);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const double* sp = y + pos_offset_[b];
+    const double* sv = y + vel_offset_[b];
+    body.positionRates(sp, sv, ydot + pos_offset_[b]);
+    body.accelerations(sp, sv, h_[b].data(), gravity_, ydot + vel_offset_[b]);
+  }
+  if (!joints_.empty()) applyConstraints(y, ydot);
+}
+
+void MultibodySystem::rateQuotients(
+    int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
+    const std::function<void(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& column) const {
+  const BodyModel& body = *bodies_[b];
+  const int np = body.numPositions(), nv = body.numVelocities();
+  const int po = pos_offset_[b], vo = vel_offset_[b];
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd pr0(np), a0(nv), pr(np), a(nv);
+  body.positionRates(yy.data() + po, yy.data() + vo, pr0.data());
+  body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a0.data());
+  for (int k = 0; k < npCols + nvCols; ++k) {
+    const int j = k < npCols ? po + k : vo + (k - npCols);
+    const double saved = yy(j);
+    const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+    yy(j) = saved + delta;
+    body.positionRates(yy.data() + po, yy.data() + vo, pr.data());
+    body.accelerations(yy.data() + po, yy.data() + vo, h_[b].data(), gravity_, a.data());
+    yy(j) = saved;
+    column(j, (pr - pr0) / delta, (a - a0) / delta);
+  }
+}
+
+bool MultibodySystem::jacobian(double, const double* y, const double*, const double* scale,
+                               double* Jdata) {
+  // Joints and force elements couple the bodies in ways the per-body quotients below do
+  // not see: the integrator's own difference quotients of the whole rhs() then serve.
+  if (!joints_.empty() || !line_forces_.empty()) return false;
+  const int n = size_;
+  Eigen::Map<Eigen::MatrixXd> J(Jdata, n, n);
+  contactForces(y, h_, nullptr);
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int np = body.numPositions(), nv = body.numVelocities();
+    const int po = pos_offset_[b], vo = vel_offset_[b];
+    rateQuotients(b, np, nv, yy, scale,
+                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                    J.block(po, j, np, 1) = dpr;
+                    J.block(vo, j, nv, 1) = da;
+                  });
+  }
+  // Contact stiffness: dh_X/ds_p(Y) = -k bv_X bp_Y^T (signs of the target side folded in).
+  bool any = false;
+  std::vector<Eigen::MatrixXd> dh(numBodies());
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bodiesOf[2] = {t.body_c, t.body_t};
+      const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
+      const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
+      for (int X = 0; X < 2; ++X) {
+        Eigen::MatrixXd& D = dh[bodiesOf[X]];
+        if (D.size() == 0) D.setZero(bodies_[bodiesOf[X]]->numVelocities(), n);
+        for (int Y = 0; Y < 2; ++Y) {
+          const double sign = (X == Y) ? -1.0 : 1.0;
+          const int po = pos_offset_[bodiesOf[Y]];
+          D.middleCols(po, bp[Y]->size()) += (sign * t.k) * (*bv[X]) * bp[Y]->transpose();
+        }
+      }
+      any = true;
+    }
+  }
+  if (any) {
+    for (int b = 0; b < numBodies(); ++b) {
+      if (dh[b].size() == 0) continue;
+      bodies_[b]->solveMass(y + pos_offset_[b], dh[b]);
+      J.middleRows(vel_offset_[b], dh[b].rows()) += dh[b];
+    }
+  }
+  return true;
+}
+
+bool MultibodySystem::structuredJacobian(double, const double* y, const double* scale,
+                                         StructuredJacobian& J) {
+  if (!joints_.empty() || !line_forces_.empty()) return false;  // as jacobian()
+  for (const auto& b : bodies_)
+    if (!b->diagonalElasticity()) return false;
+  const int n = size_;
+  contactForces(y, h_, nullptr);
+  int r = 0;
+  for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
+  for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
+  J.n = n;
+  J.q_index.clear();
+  J.v_index.clear();
+  J.U.setZero(n, r);
+  J.V.setZero(n, r);
+  int pairs = 0;
+  for (const auto& b : bodies_) pairs += b->nq();
+  J.k.resize(pairs);
+  J.c.resize(pairs);
+  std::vector<Eigen::MatrixXd> C(numBodies()), Sinv(numBodies());
+  Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
+  int col = 0;
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int np = body.numPositions(), nv = body.numVelocities(), nq = body.nq();
+    const int nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
+    const int po = pos_offset_[b], vo = vel_offset_[b];
+    // Elastic pairs: d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E).
+    for (int i = 0; i < nq; ++i) {
+      J.k(J.q_index.size()) = body.stiffnessDiagonal()(i);
+      J.c(J.q_index.size()) = body.dampingDiagonal()(i);
+      J.q_index.push_back(po + nrp + i);
+      J.v_index.push_back(vo + nrv + i);
+    }
+    // Rigid columns: difference quotients of the body's rates, contact forces frozen.
+    rateQuotients(b, nrp, nrv, yy, scale,
+                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                    J.U.col(col).segment(po, np) = dpr;
+                    J.U.col(col).segment(vo, nv) = da;
+                    J.V(j, col++) = 1.0;
+                  });
+    // Elastic columns through M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]]
+    // (S = Mrr - C^T C): d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c).
+    Eigen::MatrixXd Mrr;
+    body.massBlocks(y + po, C[b], Mrr);
+    Sinv[b] = (Mrr - C[b].transpose() * C[b]).inverse();
+    const Eigen::MatrixXd SCt = Sinv[b] * C[b].transpose();
+    for (int k = 0; k < nrv; ++k, ++col) {
+      J.U(vo + k, col) = 1.0;
+      J.U.col(col).segment(vo + nrv, nq) = -C[b].col(k);
+      J.V.col(col).segment(po + nrp, nq) =
+          SCt.row(k).transpose().cwiseProduct(body.stiffnessDiagonal());
+      J.V.col(col).segment(vo + nrv, nq) =
+          SCt.row(k).transpose().cwiseProduct(body.dampingDiagonal());
+    }
+  }
+  // Contact: d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T (contact_pair.h), mapped by M^-1.
+  auto solveMass = [&](int b, const Eigen::VectorXd& x) {
+    const int nrv = bodies_[b]->numRigidVelocities();
+    const Eigen::VectorXd xr = x.head(nrv), xe = x.tail(x.size() - nrv);
+    Eigen::VectorXd z(x.size());
+    z.head(nrv) = Sinv[b] * (xr - C[b].transpose() * xe);
+    z.tail(xe.size()) = xe - C[b] * z.head(nrv);
+    return z;
+  };
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bc = t.body_c, bt = t.body_t;
+      J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
+      J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
+      J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
+      J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+      ++col;
+    }
+  }
+  FFRIGA_ASSERT(col == r, "structured Jacobian: " << col << " of " << r << " columns");
+  return true;
+}
+
+void MultibodySystem::normalize(double* y) const {
+  for (int b = 0; b < numBodies(); ++b) bodies_[b]->normalize(y + pos_offset_[b]);
+}
+
+SystemEnergies MultibodySystem::energies(const double* y) {
+  SystemEnergies e;
+  for (int b = 0; b < numBodies(); ++b) {
+    const double* sp = y + pos_offset_[b];
+    e.kinetic += bodies_[b]->kineticEnergy(sp, y + vel_offset_[b]);
+    e.elastic += bodies_[b]->elasticEnergy(sp);
+    e.gravity += bodies_[b]->gravityEnergy(sp, gravity_);
+  }
+  if (!contacts_.empty()) {
+    std::vector<ContactState> states;
+    std::vector<Eigen::VectorXd> h;
+    contactForces(y, h, &states);
+    for (const ContactState& s : states) e.contact += s.energy;
+  }
+  for (const LineForceState& s : lineForceStates(y)) e.force_elements += s.energy;
+  return e;
+}
+
+void MultibodySystem::momentum(const double* y, Eigen::Vector3d& linear,
+                               Eigen::Vector3d& angular) const {
+  linear.setZero();
+  angular.setZero();
+  for (int b = 0; b < numBodies(); ++b) {
+    Eigen::Vector3d l, a;
+    bodies_[b]->momentum(y + pos_offset_[b], y + vel_offset_[b], l, a);
+    linear += l;
+    angular += a;
+  }
+}
+
+}  // namespace ffriga

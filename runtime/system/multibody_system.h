@@ -1,0 +1,172 @@
+// The multibody system: any number of flexible, frozen or rigid bodies
+// (runtime/bodies/body_model.h), gravity, contact pairs (runtime/contact/contact_pair.h),
+// force elements along lines (runtime/forces/line_force.h) and joints
+// (runtime/constraints/joint.h), in first-order form for the integrator (paper Eq. 1 for
+// every body):
+//
+//   y = [s_p(body 0), s_p(body 1), ..., s_v(body 0), s_v(body 1), ...],
+//   dy/dt = [position rates; accelerations from M(q) dz = h_d + h_b - h_omega - h_e + J^T lambda].
+//
+// Contact forces and force elements are the discrete forces h_d (Eq. 18); each adds equal
+// and opposite forces to its two bodies.
+//
+// Joints (system/constrained_motion.cc). The constraints g(s_p) = 0 are imposed at the
+// acceleration level, J dz/dt + bias = 0, with multipliers lambda found in every right-hand
+// side by a Schur complement on the bodies' own mass solves:
+//   a_b = M_b^-1 h_b (unconstrained),  X_b = M_b^-1 J_b^T,  S = sum_b J_b X_b  (m x m, SPD),
+//   S lambda = -bias - sum_b J_b a_b,   dz_b/dt = a_b + X_b lambda.
+// Why this and not IDA or relative coordinates: the bodies keep their O(nq) mass solves
+// (Me = E), the integrator keeps seeing an ODE (CVODE's BDF, as for free bodies), closed
+// loops need nothing special, and the drift of the position and velocity constraints that
+// the acceleration form allows is removed by CVODE's projection after every step
+// (CVodeSetProjFn; project() below): the mass-metric orthogonal projection
+//   positions:  dz = -X S^-1 g, s_p <- s_p + (ds_p/dz) dz   (Newton, to |g| <= 1e-13),
+//   velocities: z <- z - X S^-1 J z,
+// which for the BDF corrector is the standard projection onto the constraint manifold.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "runtime/bodies/body_model.h"
+#include "runtime/constraints/joint.h"
+#include "runtime/contact/contact_pair.h"
+#include "runtime/forces/line_force.h"
+#include "runtime/integration/ode_system.h"
+
+namespace ffriga {
+
+struct SystemEnergies {
+  double kinetic = 0.0;         // J
+  double elastic = 0.0;         // J, 1/2 q^T Ke q summed over bodies
+  double gravity = 0.0;         // J, potential of gravity
+  double contact = 0.0;         // J, penalty energy of the active contact points
+  double force_elements = 0.0;  // J, potential energy of the force elements (springs, Hertz)
+};
+
+// A marker whose inertial position and velocity the result file records.
+struct Sensor {
+  std::string name;
+  MarkerEnd end;
+};
+
+// All joint equations at one state, over the system's velocities (columns: body b's
+// velocities start at velocityOffset(b) - velocityOffset(0)).
+struct ConstraintRows {
+  Eigen::VectorXd g, bias;  // m
+  Eigen::MatrixXd J;        // m x (total velocities)
+  std::vector<JointRows> joints;
+};
+
+class MultibodySystem : public OdeSystem {
+ public:
+  int addBody(std::unique_ptr<BodyModel> body);  // returns the body's index
+  void addContact(std::unique_ptr<ContactPair> pair);
+  void addJoint(std::unique_ptr<Joint> joint);
+  void addLineForce(std::unique_ptr<LineForce> force);
+  void addSensor(Sensor sensor) { sensors_.push_back(std::move(sensor)); }
+  int numSensors() const { return static_cast<int>(sensors_.size()); }
+  const Sensor& sensor(int s) const { return sensors_[s]; }
+  // Inertial position (m) and velocity (m/s) of sensor s at y.
+  void sensorState(const double* y, int s, Eigen::Vector3d& position,
+                   Eigen::Vector3d& velocity) const;
+  void setGravity(const Eigen::Vector3d& g) { gravity_ = g; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+
+  int numBodies() const { return static_cast<int>(bodies_.size()); }
+  const BodyModel& body(int b) const { return *bodies_[b]; }
+  BodyModel& body(int b) { return *bodies_[b]; }
+  int numContacts() const { return static_cast<int>(contacts_.size()); }
+  const ContactPair& contact(int c) const { return *contacts_[c]; }
+  ContactPair& contact(int c) { return *contacts_[c]; }
+
+  int numJoints() const { return static_cast<int>(joints_.size()); }
+  const Joint& joint(int j) const { return *joints_[j]; }
+  Joint& joint(int j) { return *joints_[j]; }
+  int numConstraints() const { return num_constraints_; }
+  int numLineForces() const { return static_cast<int>(line_forces_.size()); }
+  const LineForce& lineForce(int f) const { return *line_forces_[f]; }
+
+  int size() const override { return size_; }
+  int positionOffset(int b) const { return pos_offset_[b]; }
+  int velocityOffset(int b) const { return vel_offset_[b]; }
+
+  void rhs(double t, const double* y, double* ydot) override;
+  void normalize(double* y) const override;
+  bool hasConstraints() const override { return !joints_.empty(); }
+  // CVODE's projection: corr = P(y) - y with P the projection of the header comment.
+  // Returns false if Newton's iteration on the positions did not converge.
+  bool project(double t, const double* y, double* corr) override;
+  // Projects y itself (positions, then velocities); false if not converged.
+  bool projectState(double* y);
+  // The joint equations at y.
+  void constraintRows(const double* y, ConstraintRows& rows) const;
+  // Multipliers at y (one right-hand side), per joint its reaction on end b
+  // (runtime/constraints/joint.h).
+  std::vector<JointReaction> jointReactions(const double* y);
+  // The force elements' states at y.
+  std::vector<LineForceState> lineForceStates(const double* y) const;
+  // Newton-matrix Jacobian: difference quotients of each body's own rates with the contact
+  // forces frozen (cheap: no contact search), plus the analytic low-rank contact stiffness
+  // (contact_pair.h) mapped by M(q)^-1.
+  bool jacobian(double t, const double* y, const double* f, const double* scale,
+                double* J) override;
+
+  // The pairs' diagnostics at the state of the latest rhs() call. CVODE evaluates the
+  // right-hand side last at the final Newton iterate of an accepted step, so after a step
+  // this is the contact state at its end to within the Newton tolerance, at no extra cost.
+  const std::vector<ContactState>& lastRhsContacts() const { return rhs_states_; }
+  // The same Jacobian in structured form (runtime/integration/structured_newton.h), available when
+  // every body has Me = E and diagonal Ke, De: D holds the elastic pairs; U V^T the rigid columns
+  // (difference quotients as above), the rigid-elastic inertial coupling through M(q)^-1
+  // (rank = rigid velocities per body) and one term per active contact point. Neglected, as
+  // in jacobian() up to round-off: the q-dependence of M(q) and the velocity-quadratic
+  // forces in the elastic columns (first order in q and w; the Newton matrix may be
+  // approximate).
+  bool structuredJacobian(double t, const double* y, const double* scale,
+                          StructuredJacobian& J) override;
+  // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
+  void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
+                     std::vector<ContactState>* states);
+  SystemEnergies energies(const double* y);
+  // Total linear and angular momentum (about the inertial origin), inertial components.
+  void momentum(const double* y, Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
+
+ private:
+  std::vector<std::unique_ptr<BodyModel>> bodies_;
+  std::vector<std::unique_ptr<ContactPair>> contacts_;
+  std::vector<std::unique_ptr<Joint>> joints_;
+  std::vector<std::unique_ptr<LineForce>> line_forces_;
+  std::vector<Sensor> sensors_;
+  int num_constraints_ = 0;
+  Eigen::VectorXd lambda_;  // multipliers of the latest rhs()
+  std::vector<int> pos_offset_, vel_offset_;
+  int size_ = 0;
+  Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
+  std::vector<Eigen::VectorXd> h_;  // workspace: generalised applied forces per body
+  std::vector<ContactState> rhs_states_;
+  void layout();
+  // dy/dt at y; the contact pairs' diagnostics into `states` if given.
+  void evaluateRates(const double* y, double* ydot, std::vector<ContactState>* states);
+  int totalVelocities() const { return size_ - (bodies_.empty() ? 0 : vel_offset_[0]); }
+  // Adds the force elements' generalised forces at y to h (states: optional diagnostics).
+  void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,
+                     std::vector<LineForceState>* states) const;
+  // X = M^-1 J^T over the bodies (rows of the system's velocities) and S = J X.
+  void constraintMobility(const double* y, const Eigen::MatrixXd& J, Eigen::MatrixXd& X,
+                          Eigen::LLT<Eigen::MatrixXd>& S) const;
+  // Adds X lambda to the accelerations in ydot, lambda solving the header's Schur system.
+  void applyConstraints(const double* y, double* ydot);
+  // Difference quotients of body b's rates (position rates and accelerations, the contact
+  // forces in h_ frozen) with respect to its first npCols positions and nvCols velocities:
+  // column(j, d positionRates / d y_j, d accelerations / d y_j) for each state index j.
+  // Increments sqrt(eps) max(|y_j|, scale_j); yy is restored.
+  void rateQuotients(
+      int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
+      const std::function<void(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& column) const;
+};
+
+}  // namespace ffriga

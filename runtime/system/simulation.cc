@@ -1,0 +1,154 @@
+#include "runtime/system/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+
+#include "common/error.h"
+
+namespace ffriga {
+
+namespace {
+
+volatile std::sig_atomic_t g_interrupt = 0;
+
+extern "C" void onInterrupt(int) {
+  g_interrupt = 1;
+}
+
+using Clock = std::chrono::steady_clock;
+
+double seconds(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double>(b - a).count();
+}
+
+void writeStatistics(ResultWriter& w, const SimulationReport& r) {
+  w.setAttribute("status", r.status);
+  w.setAttribute("final_time_s", r.final_time);
+  w.setAttribute("wall_time_s", r.wall_time_s);
+  w.setAttribute("solver_steps", r.stats.steps);
+  w.setAttribute("solver_rhs_evals", r.stats.rhs_evals);
+  w.setAttribute("solver_jacobian_evals", r.stats.jacobian_evals);
+  w.setAttribute("solver_jacobian_rhs_evals", r.stats.jacobian_rhs_evals);
+  w.setAttribute("solver_linear_setups", r.stats.linear_setups);
+  w.setAttribute("solver_error_test_failures", r.stats.error_test_failures);
+  w.setAttribute("solver_nonlinear_iterations", r.stats.nonlinear_iterations);
+  w.setAttribute("solver_convergence_failures", r.stats.convergence_failures);
+  const PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
+  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
+  for (int i = 0; i < 3; ++i) {
+    w.setAttribute(std::string("phase_") + names[i] + "_wall_s", phases[i]->wall_s);
+    w.setAttribute(std::string("phase_") + names[i] + "_steps", phases[i]->steps);
+    w.setAttribute(std::string("phase_") + names[i] + "_rhs_evals", phases[i]->rhs_evals);
+  }
+}
+
+}  // namespace
+
+void installInterruptHandler() {
+  std::signal(SIGINT, onInterrupt);
+}
+bool interruptRequested() {
+  return g_interrupt != 0;
+}
+void requestInterrupt() {
+  g_interrupt = 1;
+}
+void clearInterrupt() {
+  g_interrupt = 0;
+}
+
+SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
+                          const SimulationSettings& settings, ResultWriter& writer) {
+  FFRIGA_CHECK(
+      settings.end_time > 0.0 && settings.output_interval > 0.0,
+      "end time " << settings.end_time << ", output interval " << settings.output_interval);
+  SimulationReport report;
+  const Clock::time_point start = Clock::now();
+  Eigen::VectorXd y = y0;
+  system.normalize(y.data());
+  writer.append(0.0, y, system);
+  const long nOut =
+      std::max(1L, std::lround(std::ceil(settings.end_time / settings.output_interval - 1e-9)));
+  long nextOut = 1;
+  auto outputTime = [&](long k) {
+    return std::min(settings.end_time, k * settings.output_interval);
+  };
+  int phase = 0;  // 0 before contact, 1 during, 2 after
+  Clock::time_point lastProgress = start;
+  double t = 0.0;
+  try {
+    BdfIntegrator integ(system, 0.0, y, settings.integrator);
+    integ.setStopTime(settings.end_time);
+    IntegratorStats last;
+    double tPrev = t;
+    while (t < settings.end_time && nextOut <= nOut) {
+      if (interruptRequested()) {
+        report.interrupted = true;
+        break;
+      }
+      const Clock::time_point s0 = Clock::now();
+      t = integ.step();
+      // Outputs inside this step, by interpolation.
+      while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14)) {
+        integ.interpolate(std::min(outputTime(nextOut), t), y);
+        system.normalize(y.data());
+        writer.append(outputTime(nextOut), y, system);
+        ++nextOut;
+      }
+      // Phase bookkeeping (paper Table 3): contact state at the end of the step, as the
+      // step's last right-hand side saw it (MultibodySystem::lastRhsContacts).
+      bool contact = false;
+      for (const ContactState& s : system.lastRhsContacts()) {
+        contact = contact || s.active_points > 0;
+        report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
+      }
+      if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
+      if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
+      if (contact)
+        phase = 1;
+      else if (phase == 1)
+        phase = 2;
+      tPrev = t;
+      const IntegratorStats now = integ.stats();
+      PhaseStats& ps = phase == 0 ? report.before : phase == 1 ? report.during : report.after;
+      const Clock::time_point s1 = Clock::now();
+      ps.wall_s += seconds(s0, s1);
+      ps.steps += now.steps - last.steps;
+      ps.rhs_evals +=
+          (now.rhs_evals + now.jacobian_rhs_evals) - (last.rhs_evals + last.jacobian_rhs_evals);
+      last = now;
+      report.stats = now;
+      if (settings.verbosity > 0 && seconds(lastProgress, s1) >= settings.progress_interval) {
+        lastProgress = s1;
+        const double elapsed = seconds(start, s1);
+        const double left = t > 0.0 ? elapsed * (settings.end_time - t) / t : 0.0;
+        std::fprintf(stderr,
+                     "ffrsim: t = %.6g s (%.1f %%), %ld steps, %.1f s elapsed, ~%.1f s left\n", t,
+                     100.0 * t / settings.end_time, now.steps, elapsed, left);
+      }
+    }
+    report.final_time = t;
+    report.wall_time_s = seconds(start, Clock::now());
+    if (report.interrupted) {
+      report.status = Str() << "interrupted at t = " << t << " s";
+    } else {
+      report.completed = true;
+      report.status = "completed";
+    }
+    writeStatistics(writer, report);
+    writer.flush();
+  } catch (const std::exception& e) {
+    report.final_time = t;
+    report.wall_time_s = seconds(start, Clock::now());
+    report.status = Str() << "failed at t = " << t << " s: " << e.what();
+    writeStatistics(writer, report);
+    writer.close();
+    throw ComputeError(report.status);
+  }
+  return report;
+}
+
+}  // namespace ffriga

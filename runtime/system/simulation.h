@@ -1,0 +1,63 @@
+// The time loop of ffrsim: integrates a MultibodySystem with the BDF integrator, writes an
+// output row at every multiple of the output interval (interpolated, CVodeGetDky, so outputs
+// never shorten the steps), reports progress on stderr, honours an interrupt request
+// (SIGINT) between steps, and measures the phases of paper Table 3: wall time, steps and
+// right-hand sides before the first contact, during contact and after it.
+//
+// The result file always ends with the root attribute `status`: "completed",
+// "interrupted at t = ... s" or "failed at t = ... s: MESSAGE"; with wall_time_s (time
+// integration only) and the solver statistics.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "runtime/integration/bdf_integrator.h"
+#include "runtime/output/result_writer.h"
+#include "runtime/system/multibody_system.h"
+
+namespace ffriga {
+
+struct SimulationSettings {
+  double end_time = 0.0;         // s
+  double output_interval = 0.0;  // s; the first row is at t = 0
+  IntegratorOptions integrator;
+  int verbosity = 1;               // 0: silent; >= 1: progress on stderr
+  double progress_interval = 1.0;  // s of wall time between progress lines
+};
+
+struct PhaseStats {
+  double wall_s = 0.0;
+  long steps = 0;
+  long rhs_evals = 0;  // including those of difference-quotient Jacobians
+};
+
+struct SimulationReport {
+  std::string status;  // as written to the file
+  bool completed = false;
+  bool interrupted = false;
+  double final_time = 0.0;  // s
+  double wall_time_s = 0.0;
+  IntegratorStats stats;
+  PhaseStats before, during, after;
+  double max_normal_force = 0.0;  // N, over the steps and contact pairs
+  // Contact duration, from the first to the last step with an active contact point: each
+  // end is the midpoint between the last step without and the first step with contact
+  // (s; negative when there was no contact).
+  double contact_begin = -1.0;
+  double contact_end = -1.0;
+};
+
+// SIGINT handling: the first Ctrl-C requests a stop (checked between steps).
+void installInterruptHandler();
+bool interruptRequested();
+void requestInterrupt();  // for tests
+void clearInterrupt();
+
+// Runs from (0, y0) to settings.end_time. Integration failures are recorded in the file and
+// the report (completed = false) and rethrown as ComputeError after the file is closed.
+SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
+                          const SimulationSettings& settings, ResultWriter& writer);
+
+}  // namespace ffriga
