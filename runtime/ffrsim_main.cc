@@ -68,7 +68,10 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
   for (int i = 0; i < 3; ++i)
     std::printf("  %-16s %10.3f %8ld %10ld\n", names[i], p[i]->wall_s, p[i]->steps,
                 p[i]->rhs_evals);
-  if (scene.system->numContacts() > 0) {
+  bool hertzPoints = false;
+  for (int f = 0; f < scene.system->numLineForces(); ++f)
+    hertzPoints = hertzPoints || std::string(scene.system->lineForce(f).kind()) == "hertz_contact";
+  if (scene.system->numContacts() > 0 || hertzPoints) {
     std::printf("  maximum contact force %.6g N (over the steps and pairs)\n", r.max_normal_force);
   }
   if (r.contact_begin >= 0.0) {

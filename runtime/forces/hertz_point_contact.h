@@ -14,7 +14,7 @@ class HertzPointContact : public LineForce {
  public:
   HertzPointContact(std::string name, MarkerEnd a, MarkerEnd b, const HertzSphere& sa,
                     const HertzSphere& sb);
-  const char* kind() const override { return "hertz_point_contact"; }
+  const char* kind() const override { return "hertz_contact"; }
   double stiffness() const { return K_; }
   double radiusSum() const { return radii_; }
 

@@ -71,7 +71,98 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
   elastic_ = &create(energy.id(), "elastic", 0, "J", "elastic energy 1/2 q^T Ke q, all bodies");
   contact_ = &create(energy.id(), "contact", 0, "J", "penalty energy, all contact pairs");
   gravity_ = &create(energy.id(), "gravity", 0, "J", "potential energy of gravity");
+  force_elements_ = &create(energy.id(), "force_elements", 0, "J",
+                            "potential energy of the force elements (springs, Hertz contact)");
+  createMultibodySeries(system);
   flush();
+}
+
+void ResultWriter::createMultibodySeries(const MultibodySystem& system) {
+  const h5::Context c{path_};
+  auto endName = [&](const MarkerEnd& e) {
+    return e.body < 0 ? std::string("ground") : system.body(e.body).name() + "." + e.marker.name;
+  };
+  if (system.numJoints() > 0) {
+    Handle joints = group(file_.id(), "joints");
+    for (int j = 0; j < system.numJoints(); ++j) {
+      const Joint& joint = system.joint(j);
+      Handle g = group(joints.id(), joint.name());
+      h5::writeAttribute(c, g.id(), "type", std::string(jointTypeName(joint.type())));
+      h5::writeAttribute(c, g.id(), "end_a", endName(joint.end(0)));
+      h5::writeAttribute(c, g.id(), "end_b", endName(joint.end(1)));
+      JointSeries s;
+      s.force =
+          &create(g.id(), "force", 3, "N", "reaction force of the joint on end b's body, inertial");
+      s.moment = &create(g.id(), "moment", 3, "N m",
+                         "reaction moment of the joint on end b's body about its marker point, "
+                         "inertial");
+      s.violation = &create(g.id(), "violation", 0, "m or 1",
+                            "largest |g| of the joint's position-level equations");
+      joints_.push_back(s);
+    }
+  }
+  if (system.numLineForces() > 0) {
+    Handle forces = group(file_.id(), "force_elements");
+    for (int f = 0; f < system.numLineForces(); ++f) {
+      const LineForce& e = system.lineForce(f);
+      Handle g = group(forces.id(), e.name());
+      h5::writeAttribute(c, g.id(), "kind", std::string(e.kind()));
+      h5::writeAttribute(c, g.id(), "end_a", endName(e.end(0)));
+      h5::writeAttribute(c, g.id(), "end_b", endName(e.end(1)));
+      LineForceSeries s;
+      s.length = &create(g.id(), "length", 0, "m", "distance between the two points");
+      s.rate = &create(g.id(), "rate", 0, "m/s", "rate of change of the length");
+      s.tension = &create(g.id(), "tension", 0, "N",
+                          "force along the line, > 0 pulling the ends together (Hertz "
+                          "contact: minus the contact force)");
+      s.energy = &create(g.id(), "energy", 0, "J", "potential energy");
+      line_forces_.push_back(s);
+    }
+  }
+  if (system.numSensors() > 0) {
+    Handle sensors = group(file_.id(), "sensors");
+    for (int i = 0; i < system.numSensors(); ++i) {
+      Handle g = group(sensors.id(), system.sensor(i).name);
+      h5::writeAttribute(c, g.id(), "marker", endName(system.sensor(i).end));
+      SensorSeries s;
+      s.position = &create(g.id(), "position", 3, "m", "marker position, inertial");
+      s.velocity = &create(g.id(), "velocity", 3, "m/s", "marker velocity, inertial");
+      sensors_.push_back(s);
+    }
+  }
+}
+
+void ResultWriter::appendMultibodyRows(const Eigen::VectorXd& y, MultibodySystem& system) {
+  if (system.numJoints() > 0) {
+    const std::vector<JointReaction> r = system.jointReactions(y.data());
+    ConstraintRows rows;
+    system.constraintRows(y.data(), rows);
+    int row = 0;
+    for (int j = 0; j < system.numJoints(); ++j) {
+      const int m = system.joint(j).numEquations();
+      const double violation = rows.g.segment(row, m).lpNorm<Eigen::Infinity>();
+      row += m;
+      appendRow(*joints_[j].force, r[j].force.data());
+      appendRow(*joints_[j].moment, r[j].moment.data());
+      appendRow(*joints_[j].violation, &violation);
+    }
+  }
+  const std::vector<LineForceState> f = system.lineForceStates(y.data());
+  double energy = 0.0;
+  for (int i = 0; i < system.numLineForces(); ++i) {
+    appendRow(*line_forces_[i].length, &f[i].length);
+    appendRow(*line_forces_[i].rate, &f[i].rate);
+    appendRow(*line_forces_[i].tension, &f[i].tension);
+    appendRow(*line_forces_[i].energy, &f[i].energy);
+    energy += f[i].energy;
+  }
+  appendRow(*force_elements_, &energy);
+  for (int i = 0; i < system.numSensors(); ++i) {
+    Eigen::Vector3d x, v;
+    system.sensorState(y.data(), i, x, v);
+    appendRow(*sensors_[i].position, x.data());
+    appendRow(*sensors_[i].velocity, v.data());
+  }
 }
 
 ResultWriter::~ResultWriter() {
@@ -113,25 +204,33 @@ ResultWriter::Series& ResultWriter::create(hid_t parent, const std::string& name
 }
 
 void ResultWriter::appendRow(Series& s, const double* row) {
-  const int rank = s.cols == 0 ? 1 : 2;
+  s.pending.insert(s.pending.end(), row, row + std::max(s.cols, 1));
+}
+
+void ResultWriter::writePending(Series& s) {
   const hsize_t n = static_cast<hsize_t>(std::max(s.cols, 1));
-  const hsize_t newDims[2] = {static_cast<hsize_t>(rows_ + 1), n};
+  const hsize_t count0 = s.pending.size() / n;
+  if (count0 == 0) return;
+  const int rank = s.cols == 0 ? 1 : 2;
+  const hsize_t newDims[2] = {static_cast<hsize_t>(written_) + count0, n};
   check(H5Dset_extent(s.dataset.id(), newDims), "H5Dset_extent", path_);
   Handle fspace(check(H5Dget_space(s.dataset.id()), "H5Dget_space", path_), H5Sclose);
-  const hsize_t start[2] = {static_cast<hsize_t>(rows_), 0};
-  const hsize_t count[2] = {1, n};
+  const hsize_t start[2] = {static_cast<hsize_t>(written_), 0};
+  const hsize_t count[2] = {count0, n};
   check(H5Sselect_hyperslab(fspace.id(), H5S_SELECT_SET, start, nullptr, count, nullptr),
         "H5Sselect_hyperslab", path_);
   Handle mspace(check(H5Screate_simple(rank, count, nullptr), "H5Screate_simple", path_), H5Sclose);
   if (s.integer) {
-    std::vector<long> v(row, row + n);
+    std::vector<long> v(s.pending.begin(), s.pending.end());
     check(
         H5Dwrite(s.dataset.id(), H5T_NATIVE_LONG, mspace.id(), fspace.id(), H5P_DEFAULT, v.data()),
         "H5Dwrite", path_);
   } else {
-    check(H5Dwrite(s.dataset.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), H5P_DEFAULT, row),
+    check(H5Dwrite(s.dataset.id(), H5T_NATIVE_DOUBLE, mspace.id(), fspace.id(), H5P_DEFAULT,
+                   s.pending.data()),
           "H5Dwrite", path_);
   }
+  s.pending.clear();
 }
 
 void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& system) {
@@ -190,12 +289,16 @@ void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& s
   appendRow(*elastic_, &e.elastic);
   appendRow(*contact_, &contactEnergy);
   appendRow(*gravity_, &e.gravity);
+  appendMultibodyRows(y, system);
   ++rows_;
   if (rows_ % flush_rows_ == 0) flush();
 }
 
 void ResultWriter::flush() {
-  if (file_.id() >= 0) check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
+  if (file_.id() < 0) return;
+  for (auto& series : series_) writePending(*series);
+  written_ = rows_;
+  check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
 }
 
 void ResultWriter::setAttribute(const std::string& name, const std::string& value) {

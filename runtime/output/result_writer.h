@@ -18,7 +18,7 @@
 namespace ffriga {
 
 constexpr const char* kResultFormat = "ffriga-result";
-constexpr int kResultFormatVersion = 1;
+constexpr int kResultFormatVersion = 2;
 
 class ResultWriter {
  public:
@@ -44,10 +44,15 @@ class ResultWriter {
     h5::Handle dataset;
     int cols = 1;  // 0: one-dimensional (scalar per row)
     bool integer = false;
+    std::vector<double> pending;  // rows appended since the last flush, row-major
   };
   Series& create(hid_t group, const std::string& name, int cols, const std::string& unit,
                  const std::string& description, bool integer = false);
+  // Rows are kept in memory and written as one block per series at flush() (one HDF5
+  // extent and write per series instead of one per row).
   void appendRow(Series& s, const double* row);
+  void writePending(Series& s);
+  long written_ = 0;  // rows on disk
   h5::Handle group(hid_t parent, const std::string& name);
 
   std::string path_;
@@ -62,7 +67,22 @@ class ResultWriter {
     Series *normal_force, *force, *max_penetration, *active_points, *projection_failures;
   };
   std::vector<ContactSeries> contacts_;
-  Series *kinetic_ = nullptr, *elastic_ = nullptr, *contact_ = nullptr, *gravity_ = nullptr;
+  struct JointSeries {
+    Series *force, *moment, *violation;
+  };
+  std::vector<JointSeries> joints_;
+  struct LineForceSeries {
+    Series *length, *rate, *tension, *energy;
+  };
+  std::vector<LineForceSeries> line_forces_;
+  struct SensorSeries {
+    Series *position, *velocity;
+  };
+  std::vector<SensorSeries> sensors_;
+  Series *kinetic_ = nullptr, *elastic_ = nullptr, *contact_ = nullptr, *gravity_ = nullptr,
+         *force_elements_ = nullptr;
+  void createMultibodySeries(const MultibodySystem& system);
+  void appendMultibodyRows(const Eigen::VectorXd& y, MultibodySystem& system);
   long rows_ = 0;
   int flush_rows_ = 16;
 };

@@ -94,7 +94,7 @@ std::vector<JointReaction> MultibodySystem::jointReactions(const double* y) {
   std::vector<JointReaction> out(joints_.size());
   if (joints_.empty()) return out;
   Eigen::VectorXd ydot(size_);
-  evaluateRates(y, ydot.data(), nullptr);  // sets lambda_; keeps lastRhsContacts()
+  evaluateRates(y, ydot.data(), nullptr, nullptr);  // sets lambda_; keeps lastRhsContacts()
   ConstraintRows rows;
   constraintRows(y, rows);
   int row = 0;

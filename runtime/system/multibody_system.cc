@@ -64,13 +64,14 @@ void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd
 }
 
 void MultibodySystem::rhs(double, const double* y, double* ydot) {
-  evaluateRates(y, ydot, &rhs_states_);
+  evaluateRates(y, ydot, &rhs_states_, &rhs_line_states_);
 }
 
 void MultibodySystem::evaluateRates(const double* y, double* ydot,
-                                    std::vector<ContactState>* states) {
+                                    std::vector<ContactState>* states,
+                                    std::vector<LineForceState>* lineStates) {
   contactForces(y, h_, states);
-  addLineForces(y, h_, nullptr);
+  addLineForces(y, h_, lineStates);
   for (int b = 0; b < numBodies(); ++b) {
     const BodyModel& body = *bodies_[b];
     const double* sp = y + pos_offset_[b];

@@ -119,6 +119,8 @@ class MultibodySystem : public OdeSystem {
   // right-hand side last at the final Newton iterate of an accepted step, so after a step
   // this is the contact state at its end to within the Newton tolerance, at no extra cost.
   const std::vector<ContactState>& lastRhsContacts() const { return rhs_states_; }
+  // The force elements' states at the same moment.
+  const std::vector<LineForceState>& lastRhsLineForces() const { return rhs_line_states_; }
   // The same Jacobian in structured form (runtime/integration/structured_newton.h), available when
   // every body has Me = E and diagonal Ke, De: D holds the elastic pairs; U V^T the rigid columns
   // (difference quotients as above), the rigid-elastic inertial coupling through M(q)^-1
@@ -148,9 +150,11 @@ class MultibodySystem : public OdeSystem {
   Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::VectorXd> h_;  // workspace: generalised applied forces per body
   std::vector<ContactState> rhs_states_;
+  std::vector<LineForceState> rhs_line_states_;
   void layout();
   // dy/dt at y; the contact pairs' diagnostics into `states` if given.
-  void evaluateRates(const double* y, double* ydot, std::vector<ContactState>* states);
+  void evaluateRates(const double* y, double* ydot, std::vector<ContactState>* states,
+                     std::vector<LineForceState>* lineStates);
   int totalVelocities() const { return size_ - (bodies_.empty() ? 0 : vel_offset_[0]); }
   // Adds the force elements' generalised forces at y to h (states: optional diagnostics).
   void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,

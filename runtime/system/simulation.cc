@@ -28,6 +28,10 @@ void writeStatistics(ResultWriter& w, const SimulationReport& r) {
   w.setAttribute("status", r.status);
   w.setAttribute("final_time_s", r.final_time);
   w.setAttribute("wall_time_s", r.wall_time_s);
+  // Headline figures (schemas/result_format.md): -1 where there was no contact.
+  w.setAttribute("max_contact_force_N", r.max_normal_force);
+  w.setAttribute("contact_begin_s", r.contact_begin);
+  w.setAttribute("contact_end_s", r.contact_end);
   w.setAttribute("solver_steps", r.stats.steps);
   w.setAttribute("solver_rhs_evals", r.stats.rhs_evals);
   w.setAttribute("solver_jacobian_evals", r.stats.jacobian_evals);
@@ -94,6 +98,11 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       // Outputs inside this step, by interpolation.
       while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14)) {
         integ.interpolate(std::min(outputTime(nextOut), t), y);
+        // The interpolant leaves the constraint manifold by about the local error: an
+        // output row is projected onto it like every step's state.
+        if (system.hasConstraints() && !system.projectState(y.data()))
+          throw ComputeError(Str() << "projecting the output at t = " << outputTime(nextOut)
+                                   << " s onto the joints' constraints did not converge");
         system.normalize(y.data());
         writer.append(outputTime(nextOut), y, system);
         ++nextOut;
@@ -104,6 +113,12 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       for (const ContactState& s : system.lastRhsContacts()) {
         contact = contact || s.active_points > 0;
         report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
+      }
+      for (int f = 0; f < system.numLineForces(); ++f) {  // Hertz point contacts
+        if (std::string(system.lineForce(f).kind()) != "hertz_contact") continue;
+        const double force = -system.lastRhsLineForces()[f].tension;
+        contact = contact || force > 0.0;
+        report.max_normal_force = std::max(report.max_normal_force, force);
       }
       if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
       if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
