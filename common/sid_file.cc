@@ -125,6 +125,7 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
     h5::writeVector(c, mg, "position", mk.position, "m");
     h5::writeInts(c, mg, "functions", mk.functions);
     h5::writeVector(c, mg, "values", mk.values, "1");
+    if (mk.Psi.size() > 0) h5::writeMatrix(c, mg, "Psi", mk.Psi, "rad kg^(-1/2) m^(-1)");
   }
   Handle s = h5::createGroup(c, file, "contact_surfaces");
   for (const ContactSurface& cs : sid.surfaces) writeSurface(c, s, cs);
@@ -245,6 +246,12 @@ FlexibleBodySid readSid(const std::string& path) {
     mk.position = h5::readVector(c, mg, "position");
     mk.functions = h5::readInts(c, mg, "functions");
     mk.values = h5::readVector(c, mg, "values");
+    if (h5::exists(mg, "Psi")) {
+      mk.Psi = h5::readMatrix(c, mg, "Psi");
+      if (mk.Psi.rows() != 3 || mk.Psi.cols() != sid.nq())
+        c.fail(Str() << "/markers/" << name << "/Psi is " << mk.Psi.rows() << "x" << mk.Psi.cols()
+                     << ", expected 3x" << sid.nq());
+    }
     sid.markers.push_back(std::move(mk));
   }
   Handle s = h5::openGroup(c, file, "contact_surfaces");

@@ -11,11 +11,11 @@
 
 namespace ffriga {
 
-const char* toString(BodyModel model) {
+const char* toString(ModelKind model) {
   switch (model) {
-    case BodyModel::kAxisymmetric:
+    case ModelKind::kAxisymmetric:
       return "axisymmetric";
-    case BodyModel::kSolid:
+    case ModelKind::kSolid:
       return "solid";
   }
   return "?";
@@ -156,9 +156,9 @@ void parseContact(const YamlDocument& doc, const YAML::Node& node, const NurbsPa
   }
   const std::string faceWhy = degenerateFace(patch, c->direction, c->upper);
   if (!faceWhy.empty()) {
-    throw inputError(doc, node["face"], "contact.face",
-                     Str() << "face '" << face << "' is degenerate (" << faceWhy << "); "
-                           << kDegenerateRule);
+    throw inputError(
+        doc, node["face"], "contact.face",
+        Str() << "face '" << face << "' is degenerate (" << faceWhy << "); " << kDegenerateRule);
   }
   const YAML::Node region = node["region"];
   if (static_cast<int>(region.size()) != d - 1) {
@@ -206,6 +206,24 @@ void parseMarkers(const YamlDocument& doc, const YAML::Node& node, const NurbsPa
                          "marker name '" + m.name + "' is used twice");
       }
     }
+    if (node[i]["interface"]) m.interface = node[i]["interface"].as<bool>();
+    if (bool(node[i]["parameters"]) == bool(node[i]["face"]))
+      throw inputError(doc, node[i], key,
+                       "expected either 'parameters' (a point) or 'face' (a boundary face)");
+    if (node[i]["face"]) {
+      const std::string face = getString(doc, node[i]["face"], key + ".face");
+      parseFaceName(face, &m.face_direction, &m.face_upper);  // the schema's enum checked it
+      if (d != 3 || m.face_direction >= d)
+        throw inputError(doc, node[i]["face"], key + ".face",
+                         "face markers are for 3D (solid) bodies");
+      const std::string why = degenerateFace(patch, m.face_direction, m.face_upper);
+      if (!why.empty())
+        throw inputError(doc, node[i]["face"], key + ".face",
+                         Str() << "face '" << face << "' is degenerate (" << why << ")");
+      m.face = true;
+      markers->push_back(std::move(m));
+      continue;
+    }
     const YAML::Node p = node[i]["parameters"];
     if (static_cast<int>(p.size()) != d) {
       throw inputError(doc, p, key + ".parameters",
@@ -252,9 +270,12 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
   const YAML::Node where = node ? node : doc.root;
   // Without a `reduction` block the file may still serve for geometry checks; igaprep -o
   // repeats this check (preprocessBody).
-  if (node && r->method == "craig_bampton" && !hasContact) {
+  bool interfaceMarker = false;
+  for (const auto& m : markers) interfaceMarker = interfaceMarker || m.interface;
+  if (node && r->method == "craig_bampton" && !hasContact && !interfaceMarker) {
     throw inputError(doc, where, "reduction.method",
-                     "craig_bampton needs a contact region (key 'contact') for its interface");
+                     "craig_bampton needs an interface: a contact region (key 'contact') or a "
+                     "marker with 'interface: true'");
   }
   if (r->method == "modal" && r->normal_modes < 1) {
     throw inputError(doc, node["normal_modes"], "reduction.normal_modes",
@@ -269,6 +290,10 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
                            ? std::string("frame: tangent needs frame_marker, the name of a marker")
                            : "no marker named '" + r->frame_marker + "' (see key 'markers')");
     }
+    for (const auto& m : markers)
+      if (m.name == r->frame_marker && m.face)
+        throw inputError(doc, node["frame_marker"], "reduction.frame_marker",
+                         "the tangent frame's marker must be a point (parameters), not a face");
   }
 }
 
@@ -363,8 +388,8 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
   BodyConfig c;
   const YAML::Node& root = doc.root;
   c.name = getString(doc, root["name"], "name");
-  c.model = getString(doc, root["model"], "model") == "axisymmetric" ? BodyModel::kAxisymmetric
-                                                                     : BodyModel::kSolid;
+  c.model = getString(doc, root["model"], "model") == "axisymmetric" ? ModelKind::kAxisymmetric
+                                                                     : ModelKind::kSolid;
   const YAML::Node m = root["material"];
   c.material.youngs_modulus = getDouble(doc, m["youngs_modulus"], "material.youngs_modulus");
   c.material.poisson_ratio = getDouble(doc, m["poisson_ratio"], "material.poisson_ratio");
@@ -388,7 +413,7 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
   }
   const int d = c.geometry.paramDim();
   const int s = c.geometry.spaceDim();
-  const bool axi = c.model == BodyModel::kAxisymmetric;
+  const bool axi = c.model == ModelKind::kAxisymmetric;
   if ((axi && (d != 2 || s != 2)) || (!axi && (d != 3 || s != 3))) {
     throw inputError(doc, root["model"], "model",
                      Str() << "model '" << toString(c.model) << "' needs "
@@ -502,7 +527,7 @@ std::vector<std::vector<int>> tiedControlPoints(const HierarchicalSpace& space) 
   return groups;
 }
 
-DofCount countDofs(const HierarchicalSpace& space, BodyModel model) {
+DofCount countDofs(const HierarchicalSpace& space, ModelKind model) {
   const std::vector<std::vector<int>> groups = tiedControlPoints(space);
   const Eigen::MatrixXd& P = space.controlPoints();
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
@@ -513,7 +538,7 @@ DofCount countDofs(const HierarchicalSpace& space, BodyModel model) {
     n.tied += static_cast<int>(g.size()) - 1;
     for (std::size_t i = 1; i < g.size(); ++i) tiedAway[g[i]] = 1;
   }
-  if (model == BodyModel::kAxisymmetric) {
+  if (model == ModelKind::kAxisymmetric) {
     for (int k = 0; k < P.rows(); ++k) n.on_axis += !tiedAway[k] && P(k, 0) <= 1e-12 * size;
   }
   n.ndof = space.spaceDim() * (space.numFunctions() - n.tied) - n.on_axis;

@@ -13,10 +13,10 @@
 
 namespace ffriga {
 
-enum class BodyModel { kAxisymmetric, kSolid };
+enum class ModelKind { kAxisymmetric, kSolid };
 
 // One table from enum to YAML spelling.
-const char* toString(BodyModel model);
+const char* toString(ModelKind model);
 
 struct Material {
   double youngs_modulus = 0.0;  // E, Pa
@@ -35,7 +35,11 @@ struct ContactConfig {
 
 struct MarkerConfig {
   std::string name;
-  std::vector<double> parameters;  // parametric coordinates, one per direction
+  std::vector<double> parameters;  // point marker: parametric coordinates, one per direction
+  bool face = false;               // face marker (marker_points.h): the boundary face
+  int face_direction = 0;          //   normal to parametric direction face_direction,
+  bool face_upper = false;         //   at its upper end if face_upper
+  bool interface = false;          // its control points join the Craig-Bampton interface
 };
 
 // Modal damping band: modes with from_hz <= f < to_hz get damping ratio `ratio`.
@@ -58,7 +62,7 @@ struct ReductionConfig {
 struct BodyConfig {
   YamlDocument source;  // the file as read (path, text, parsed tree)
   std::string name;
-  BodyModel model = BodyModel::kSolid;
+  ModelKind model = ModelKind::kSolid;
   Material material;
   std::string geometry_type;                // half_disk | sphere | rod | nurbs
   NurbsPatch geometry;                      // the exact, unrefined patch
@@ -102,7 +106,7 @@ struct DofCount {
   int on_axis = 0;  // distinct control points on the axis
   int ndof = 0;
 };
-DofCount countDofs(const HierarchicalSpace& space, BodyModel model);
+DofCount countDofs(const HierarchicalSpace& space, ModelKind model);
 // Groups of control points whose DOFs are tied: coincident points of the same level
 // (collapsed edges, poles, seams), read from the THB control points.
 std::vector<std::vector<int>> tiedControlPoints(const HierarchicalSpace& space);

@@ -44,14 +44,17 @@ class StageClock {
 FlexibleBodySid preprocessBody(const BodyConfig& config,
                                const std::function<void(const std::string&)>& log,
                                PreprocessSummary* summary) {
-  if (config.reduction.method == "craig_bampton" && !config.contact.present) {
+  bool interfaceMarkers = false;
+  for (const MarkerConfig& m : config.markers) interfaceMarkers = interfaceMarkers || m.interface;
+  if (config.reduction.method == "craig_bampton" && !config.contact.present && !interfaceMarkers) {
     throw InputError(Str() << config.source.path << ": the Craig-Bampton reduction (the default "
-                           << "of key 'reduction.method') needs a contact region: add the key "
-                           << "'contact' with face and region, or choose method: modal");
+                           << "of key 'reduction.method') needs an interface: add the key "
+                           << "'contact' with face and region, or 'interface: true' on a marker, "
+                           << "or choose method: modal");
   }
   FlexibleBodySid sid;
   StageClock clock(&sid, log);
-  const bool axi = config.model == BodyModel::kAxisymmetric;
+  const bool axi = config.model == ModelKind::kAxisymmetric;
   sid.name = config.name;
   sid.model = toString(config.model);
   sid.input_yaml = config.source.text;
@@ -102,8 +105,21 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
     region.upper = config.contact.upper;
     region.bounds = config.contact.bounds;
   }
+  int gaussFace = 0;  // face markers: degree + 2 Gauss points per direction
+  for (int a = 0; a < d; ++a) gaussFace = std::max(gaussFace, patch.degree(a) + 2);
   if (ro.method == ReductionMethod::kCraigBampton) {
-    const std::vector<int> cps = interfaceControlPoints(space, region);
+    std::vector<int> cps;
+    if (config.contact.present) cps = interfaceControlPoints(space, region);
+    // Interface markers: every control point whose function does not vanish at the marker,
+    // so that a joint's load there lies in the span of the constraint modes.
+    for (const MarkerConfig& m : config.markers) {
+      if (!m.interface) continue;
+      const Marker mk = m.face ? evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper,
+                                                    gaussFace, Eigen::MatrixXd(0, 0))
+                               : evaluateMarker(space, m.name, m.parameters);
+      for (std::size_t j = 0; j < mk.functions.size(); ++j)
+        if (mk.values(static_cast<int>(j)) != 0.0) cps.push_back(mk.functions[j]);
+    }
     std::set<int> nodes;
     ro.interface.assign(dofs.numDofs(), false);
     for (int k : cps) {
@@ -117,7 +133,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
     if (cps.empty()) {
       throw InputError(Str() << config.source.path << ": contact.region selects no control "
                              << "point on face " << faceName(region.direction, region.upper)
-                             << ": the interface is empty");
+                             << " and no marker has interface: true: the interface is empty");
     }
   }
   sid.n_interface_control_points = summary->interface_control_points;
@@ -205,8 +221,22 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
     sid.surfaces.push_back(std::move(cs));
   }
   for (const MarkerConfig& m : config.markers) {
+    if (m.face) {
+      Marker mk =
+          evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper, gaussFace, sid.Phi);
+      mk.position -= origin.head(s);
+      sid.markers.push_back(std::move(mk));
+      continue;
+    }
     Marker mk = evaluateMarker(space, m.name, m.parameters);
     mk.position -= origin.head(s);
+    if (s == 3) {
+      try {
+        mk.Psi = markerRotationModes(space, m.name, m.parameters, sid.Phi);
+      } catch (const InputError& e) {
+        throw InputError(Str() << config.source.path << ": " << e.what());
+      }
+    }
     sid.markers.push_back(std::move(mk));
   }
   clock.done("surface", Str() << sid.surfaces.size() << " contact surface(s), "

@@ -112,7 +112,7 @@ void printHierarchy(const ffriga::BodyConfig& c, const ffriga::HierarchicalSpace
   const ffriga::DofCount n = ffriga::countDofs(space, c.model);
   std::printf("  coincident control points: %d groups (%d points tied to another)\n", n.groups,
               n.tied);
-  if (c.model == ffriga::BodyModel::kAxisymmetric) {
+  if (c.model == ffriga::ModelKind::kAxisymmetric) {
     std::printf("  distinct control points on the axis (u_r = 0): %d\n", n.on_axis);
   }
   std::printf("  displacement DOFs: %d x %d functions = %d before tying; ndof = %d\n", s,

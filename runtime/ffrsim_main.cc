@@ -123,6 +123,11 @@ int main(int argc, char** argv) {
     scene.settings.verbosity = o.verbosity;
     ffriga::ResultWriter writer(o.output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
                                 scene.doc.text, scene.flush_rows);
+    if (scene.static_preload) {
+      writer.setAttribute("static_preload_iterations", static_cast<long>(scene.preload.iterations));
+      writer.setAttribute("static_preload_residual", scene.preload.residual);
+      writer.setAttribute("static_preload_elastic_force", scene.preload.elastic_force);
+    }
     ffriga::installInterruptHandler();
     const ffriga::SimulationReport r =
         ffriga::simulate(*scene.system, scene.y0, scene.settings, writer);

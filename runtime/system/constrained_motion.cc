@@ -142,6 +142,39 @@ bool MultibodySystem::projectState(double* y) {
   return true;
 }
 
+bool MultibodySystem::projectRigidPositions(double* y) {
+  if (joints_.empty()) return true;
+  const int v0 = vel_offset_[0], nv = totalVelocities();
+  ConstraintRows rows;
+  Eigen::VectorXd dsp;
+  for (int iter = 0; iter < 8; ++iter) {
+    constraintRows(y, rows);
+    if (rows.g.lpNorm<Eigen::Infinity>() <= 1e-13) return true;
+    // X = M_r^-1 J_r^T with only the rigid columns of each body.
+    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nv, rows.J.rows());
+    for (int b = 0; b < numBodies(); ++b) {
+      const BodyModel& body = *bodies_[b];
+      const int c = vel_offset_[b] - v0, nr = body.numRigidVelocities();
+      if (rows.J.middleCols(c, nr).isZero(0.0)) continue;
+      Eigen::MatrixXd C, Mrr;
+      body.massBlocks(y + pos_offset_[b], C, Mrr);
+      X.middleRows(c, nr) = Mrr.ldlt().solve(Eigen::MatrixXd(rows.J.middleCols(c, nr).transpose()));
+    }
+    const Eigen::LDLT<Eigen::MatrixXd> S(rows.J * X);
+    const Eigen::VectorXd dz = -X * S.solve(rows.g);
+    for (int b = 0; b < numBodies(); ++b) {
+      const BodyModel& body = *bodies_[b];
+      double* sp = y + pos_offset_[b];
+      dsp.resize(body.numPositions());
+      body.positionRates(sp, dz.data() + (vel_offset_[b] - v0), dsp.data());
+      Eigen::Map<Eigen::VectorXd>(sp, body.numPositions()) += dsp;
+      body.normalize(sp);
+    }
+  }
+  constraintRows(y, rows);
+  return rows.g.lpNorm<Eigen::Infinity>() <= 1e-13;
+}
+
 bool MultibodySystem::project(double, const double* y, double* corr) {
   Eigen::VectorXd p = Eigen::Map<const Eigen::VectorXd>(y, size_);
   if (!projectState(p.data())) return false;

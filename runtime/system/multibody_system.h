@@ -102,6 +102,10 @@ class MultibodySystem : public OdeSystem {
   bool project(double t, const double* y, double* corr) override;
   // Projects y itself (positions, then velocities); false if not converged.
   bool projectState(double* y);
+  // Moves only the rigid positions (elastic coordinates held) until the joints close:
+  // Gauss-Newton dz_r = -M_r^-1 J_r^T (J_r M_r^-1 J_r^T)^-1 g over the rigid velocity
+  // columns, M_r the bodies' rigid mass blocks (runtime/system/static_preload.h).
+  bool projectRigidPositions(double* y);
   // The joint equations at y.
   void constraintRows(const double* y, ConstraintRows& rows) const;
   // Multipliers at y (one right-hand side), per joint its reaction on end b

@@ -364,6 +364,10 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
     }
   }
   checkInitialConstraints(doc, sys, scene.y0);
+  if (root["static_preload"] && root["static_preload"].as<bool>()) {
+    scene.static_preload = true;
+    scene.preload = staticPreload(sys, scene.y0);
+  }
   if (const YAML::Node O = root["outputs"]) {
     if (O["flush_rows"]) scene.flush_rows = getInt(doc, O["flush_rows"], "outputs.flush_rows");
     s.progress_interval = doubleOr(doc, O["progress_interval"], "outputs.progress_interval", 1.0);

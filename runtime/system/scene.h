@@ -31,6 +31,7 @@
 #include "common/yaml_input.h"
 #include "runtime/system/multibody_system.h"
 #include "runtime/system/simulation.h"
+#include "runtime/system/static_preload.h"
 
 namespace ffriga {
 
@@ -48,6 +49,8 @@ struct Scene {
   // as given in the scene.
   std::vector<Eigen::Vector3d> initial_position;
   std::vector<Eigen::Vector3d> initial_velocity;
+  bool static_preload = false;  // the scene asked for it; then `preload` says how it went
+  PreloadReport preload;
 };
 
 // Initial pose of one body while the scene is assembled: inertial components.

@@ -1,0 +1,187 @@
+// Flexible rods with joints against beam theory (issue 9): the rod of the Sect. 7 pendulums
+// (configs/bodies/rod.yaml: Craig-Bampton with its joint markers on the interface; and
+// rod_modal.yaml: 20 free-free modes, as in the paper), preprocessed in-process, hanging from
+// a pin or clamped horizontally, in static equilibrium by the static preload.
+#include <cmath>
+#include <map>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+#include <filesystem>
+
+#include "common/sid_file.h"
+#include "preproc/body_config.h"
+#include "preproc/body_reduction.h"
+#include "preproc/marker_points.h"
+#include "runtime/integration/bdf_integrator.h"
+#include "runtime/system/scene.h"
+
+using namespace ffriga;
+
+namespace {
+
+const FlexibleBodySid& rodSid(const std::string& stem) {
+  static std::map<std::string, FlexibleBodySid> cache;
+  auto it = cache.find(stem);
+  if (it == cache.end()) {
+    PreprocessSummary summary;
+    const BodyConfig c =
+        loadBodyConfig(std::string(FFRIGA_SOURCE_DIR) + "/configs/bodies/" + stem + ".yaml");
+    it = cache.emplace(stem, preprocessBody(c, nullptr, &summary)).first;
+  }
+  return it->second;
+}
+
+// The rods' SID files, written once per test run into a private temporary folder and read
+// back by the scene loader (the file round trip of igaprep -o and ffrsim).
+std::string sidFolder() {
+  static const std::string dir = [] {
+    const auto d = std::filesystem::temp_directory_path() /
+                   ("ffriga_flexible_rod_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    for (const char* stem : {"rod", "rod_modal"})
+      writeSid(rodSid(stem), (d / (std::string(stem) + ".sid.h5")).string());
+    return d.string();
+  }();
+  return dir;
+}
+
+Scene rodScene(const std::string& text) {
+  return buildScene(parseYamlText(text, "inline.yaml"), {sidFolder()},
+                    [](const std::string& path) { return readSid(path); });
+}
+
+// Steel rod: E, rho, radius, length of configs/bodies/rod.yaml.
+constexpr double kE = 2.11e11, kRho = 7850.0, kR = 0.002, kL = 0.1, kG = 9.81;
+
+// Inertial position of sensor `s` at y.
+Eigen::Vector3d sensorAt(MultibodySystem& sys, const Eigen::VectorXd& y, int s) {
+  Eigen::Vector3d x, v;
+  sys.sensorState(y.data(), s, x, v);
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE("marker rotation operators are exact for rigid motions", "[flexible]") {
+  // Control point "modes" that are the rigid motions themselves: columns 0-2 translations
+  // u_k = e_c, columns 3-5 rotations u_k = theta x x_k (Phi_k = -x_k~). A marker's rotation
+  // Psi q must then be theta exactly and zero for translations, for point markers
+  // (1/2 curl) and face markers (least-squares fit) alike: NURBS reproduce rigid fields.
+  const BodyConfig c = loadBodyConfig(std::string(FFRIGA_SOURCE_DIR) + "/configs/bodies/rod.yaml");
+  const HierarchicalSpace space = bodySpace(c);
+  const Eigen::MatrixXd& P = space.controlPoints();
+  Eigen::MatrixXd Phi = Eigen::MatrixXd::Zero(3 * P.rows(), 6);
+  for (int k = 0; k < P.rows(); ++k) {
+    const Eigen::Vector3d x = P.row(k).transpose();
+    Phi.block<3, 3>(3 * k, 0).setIdentity();
+    Phi.block<3, 3>(3 * k, 3) << 0.0, x(2), -x(1), -x(2), 0.0, x(0), x(1), -x(0), 0.0;
+  }
+  Eigen::MatrixXd expected(3, 6);
+  expected << Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Identity();
+  const Eigen::MatrixXd point = markerRotationModes(space, "p", {0.3, 0.6, 0.7}, Phi);
+  CHECK((point - expected).cwiseAbs().maxCoeff() < 1e-9);  // gradients of ~1e3 /m: round-off
+  for (const bool upper : {false, true}) {
+    const Marker face = evaluateFaceMarker(space, "f", 2, upper, 5, Phi);
+    CHECK((face.Psi - expected).cwiseAbs().maxCoeff() < 1e-9);
+    CHECK(std::abs(face.values.sum() - 1.0) < 1e-14);  // area means: partition of unity
+    CHECK(std::abs(face.position(2) - (upper ? kL : 0.0)) < 1e-14);
+    CHECK(face.position.head<2>().norm() < 1e-14);  // the centroid of the disk
+  }
+}
+
+TEST_CASE("rod hanging from a pin: static elongation under its own weight", "[flexible]") {
+  for (const std::string stem : {"rod", "rod_modal"}) {
+    Scene s = rodScene(R"(
+gravity: [0, 0, -9.81]
+static_preload: true
+bodies:
+  - {name: rod, sid: )" +
+                       stem + R"(.sid.h5, position: [0, 0, -0.05]}
+joints:
+  - {name: pin, type: spherical, a: {body: ground}, b: {body: rod, marker: top}}
+sensors:
+  - {name: tip, body: rod, marker: bottom}
+integrator: {end_time: 0.01, output_interval: 0.001}
+)");
+    MultibodySystem& sys = *s.system;
+    // A bar under its own weight: delta = rho g L^2 / (2 E).
+    const double exact = kRho * kG * kL * kL / (2.0 * kE);
+    const double delta = -(sensorAt(sys, s.y0, 0)(2) + kL);
+    INFO(stem << ": elongation " << delta << " m, bar theory " << exact << " m; preload "
+              << s.preload.iterations << " Newton steps");
+    if (stem == "rod") {
+      CHECK(std::abs(delta / exact - 1.0) < 0.01);  // the issue's bound
+    } else {
+      // The free-free modes of the modal rod (the paper's reduction) miss most of the static
+      // axial stretch that a load at the end face causes: the reason configs/bodies/rod.yaml
+      // uses Craig-Bampton with interface face markers. Reported, not bounded.
+      WARN(stem << ": elongation " << 100.0 * (delta / exact - 1.0) << " % from bar theory");
+    }
+    // At rest in equilibrium: the pin carries the weight, nothing accelerates.
+    const std::vector<JointReaction> r = sys.jointReactions(s.y0.data());
+    CHECK(std::abs(r[0].force(2) / (sys.body(0).sid().mass * kG) - 1.0) < 1e-9);
+    Eigen::VectorXd ydot(sys.size());
+    sys.rhs(0.0, s.y0.data(), ydot.data());
+    const int nq = sys.body(0).nq();
+    const Eigen::VectorXd qdd = ydot.segment(sys.velocityOffset(0) + 6, nq);
+    const Eigen::VectorXd kq =
+        sys.body(0).sid().Ke.diagonal().cwiseProduct(s.y0.segment(sys.positionOffset(0) + 7, nq));
+    CHECK(qdd.lpNorm<Eigen::Infinity>() <= 1e-10 * kq.lpNorm<Eigen::Infinity>());
+    if (stem == "rod") {
+      // No ringing: hanging at rest, the elastic energy keeps its preload value.
+      BdfIntegrator integ(sys, 0.0, s.y0, s.settings.integrator);
+      const double e0 = sys.energies(s.y0.data()).elastic;
+      Eigen::VectorXd y(sys.size());
+      double worst = 0.0;
+      for (int k = 1; k <= 10; ++k) {
+        integ.advance(1e-3 * k, y);
+        worst = std::max(worst, std::abs(sys.energies(y.data()).elastic / e0 - 1.0));
+      }
+      INFO("elastic energy " << e0 << " J, largest relative change over 10 ms " << worst);
+      CHECK(worst < 1e-6);  // the issue's bound
+    }
+  }
+}
+
+TEST_CASE("horizontal rod clamped at one end: tip deflection against beam theory", "[flexible]") {
+  // The rod along +x (its axis z turned onto x by a rotation of +90 degrees about y),
+  // clamped at its top marker to the ground by a fixed joint; gravity -z.
+  // Euler-Bernoulli: delta = q L^4 / (8 E I), q = rho A g, I = pi r^4 / 4, A = pi r^2;
+  // shear (Timoshenko) adds about 0.1 % for L / r = 50.
+  const double A = M_PI * kR * kR, I = M_PI * std::pow(kR, 4) / 4.0;
+  const double exact = kRho * A * kG * std::pow(kL, 4) / (8.0 * kE * I);
+  for (const std::string stem : {"rod", "rod_modal"}) {
+    Scene s = rodScene(R"(
+gravity: [0, 0, -9.81]
+static_preload: true
+bodies:
+  - {name: rod, sid: )" +
+                       stem + R"(.sid.h5, position: [0.05, 0, 0],
+     orientation: [0.7071067811865476, 0, -0.7071067811865476, 0]}
+joints:
+  - {name: clamp, type: fixed, a: {body: ground}, b: {body: rod, marker: top}}
+sensors:
+  - {name: tip, body: rod, marker: bottom}
+integrator: {end_time: 0.01, output_interval: 0.001}
+)");
+    MultibodySystem& sys = *s.system;
+    const Eigen::Vector3d tip = sensorAt(sys, s.y0, 0);
+    const double delta = -tip(2);
+    INFO(stem << ": tip at " << tip.transpose() << ", deflection " << delta << " m, beam theory "
+              << exact << " m (" << 100.0 * (delta / exact - 1.0) << " %)");
+    CHECK(std::abs(tip(0) - kL) < 1e-6);  // the top marker at the origin, tip at +L
+    if (stem == "rod") {
+      CHECK(std::abs(delta / exact - 1.0) < 0.01);  // the issue's bound
+    }
+    WARN(stem << ": cantilever tip deflection " << 100.0 * (delta / exact - 1.0) << " %");
+    // Reactions at the clamp: the weight and its moment m g L / 2 about y.
+    const double m = sys.body(0).sid().mass;
+    const JointReaction r = sys.jointReactions(s.y0.data())[0];
+    CHECK(std::abs(r.force(2) / (m * kG) - 1.0) < 1e-9);
+    CHECK(std::abs(r.moment(1) / (-m * kG * kL / 2.0) - 1.0) <
+          1e-3);  // balances the weight's +m g L / 2
+  }
+}
