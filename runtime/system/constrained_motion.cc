@@ -106,24 +106,45 @@ std::vector<JointReaction> MultibodySystem::jointReactions(const double* y) {
   return out;
 }
 
-bool MultibodySystem::projectState(double* y) {
-  if (joints_.empty()) return true;
+bool MultibodySystem::projectionMobility(const double* y, const ConstraintRows& rows,
+                                         bool rigidOnly, Eigen::MatrixXd& X,
+                                         Eigen::LLT<Eigen::MatrixXd>& S) const {
+  if (!rigidOnly) {
+    constraintMobility(y, rows.J, X, S);
+    return true;
+  }
+  // X = M_r^-1 J_r^T over the rigid velocity columns only (elastic coordinates held).
+  const int v0 = vel_offset_[0];
+  X.setZero(totalVelocities(), rows.J.rows());
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    const int c = vel_offset_[b] - v0, nr = body.numRigidVelocities();
+    if (rows.J.middleCols(c, nr).isZero(0.0)) continue;
+    Eigen::MatrixXd C, Mrr;
+    body.massBlocks(y + pos_offset_[b], C, Mrr);
+    X.middleRows(c, nr) = Mrr.ldlt().solve(Eigen::MatrixXd(rows.J.middleCols(c, nr).transpose()));
+  }
+  S.compute(rows.J * X);
+  return S.info() == Eigen::Success;  // false: the rigid motion alone cannot close the joints
+}
+
+bool MultibodySystem::closeConstraints(double* y, bool rigidOnly) {
   const int v0 = vel_offset_[0], nv = totalVelocities();
   ConstraintRows rows;
   Eigen::MatrixXd X;
   Eigen::LLT<Eigen::MatrixXd> S;
   Eigen::VectorXd dsp;
-  // Positions: Newton steps of the mass-metric projection. |g| <= 1e-13 (m, or 1 for
-  // directions) is a few hundred ulps of the scenes' lengths, reached in 1-3 steps.
+  // |g| <= 1e-13 (m, or 1 for directions) is a few hundred ulps of the scenes' lengths,
+  // reached in 1-3 Newton steps.
   constexpr double kTolerance = 1e-13;
-  bool converged = false;
-  for (int iter = 0; iter < 8; ++iter) {
+  bool closed = false;
+  for (int iter = 0; iter < 8 && !closed; ++iter) {
     constraintRows(y, rows);
     if (rows.g.lpNorm<Eigen::Infinity>() <= kTolerance) {
-      converged = true;
+      closed = true;
       break;
     }
-    constraintMobility(y, rows.J, X, S);
+    if (!projectionMobility(y, rows, rigidOnly, X, S)) return false;
     const Eigen::VectorXd dz = -X * S.solve(rows.g);
     for (int b = 0; b < numBodies(); ++b) {
       const BodyModel& body = *bodies_[b];
@@ -134,45 +155,29 @@ bool MultibodySystem::projectState(double* y) {
       body.normalize(sp);
     }
   }
-  if (!converged) return false;
-  // Velocities: one linear projection at the projected positions.
-  constraintMobility(y, rows.J, X, S);
+  if (!closed) {
+    constraintRows(y, rows);
+    if (rows.g.lpNorm<Eigen::Infinity>() > kTolerance) return false;
+  }
+  // Velocities: one linear projection at the projected positions, in the same metric.
+  if (!projectionMobility(y, rows, rigidOnly, X, S)) return false;
   Eigen::Map<Eigen::VectorXd> z(y + v0, nv);
   z -= X * S.solve(rows.J * z);
   return true;
 }
 
-bool MultibodySystem::projectRigidPositions(double* y) {
+bool MultibodySystem::projectState(double* y) {
   if (joints_.empty()) return true;
-  const int v0 = vel_offset_[0], nv = totalVelocities();
-  ConstraintRows rows;
-  Eigen::VectorXd dsp;
-  for (int iter = 0; iter < 8; ++iter) {
-    constraintRows(y, rows);
-    if (rows.g.lpNorm<Eigen::Infinity>() <= 1e-13) return true;
-    // X = M_r^-1 J_r^T with only the rigid columns of each body.
-    Eigen::MatrixXd X = Eigen::MatrixXd::Zero(nv, rows.J.rows());
-    for (int b = 0; b < numBodies(); ++b) {
-      const BodyModel& body = *bodies_[b];
-      const int c = vel_offset_[b] - v0, nr = body.numRigidVelocities();
-      if (rows.J.middleCols(c, nr).isZero(0.0)) continue;
-      Eigen::MatrixXd C, Mrr;
-      body.massBlocks(y + pos_offset_[b], C, Mrr);
-      X.middleRows(c, nr) = Mrr.ldlt().solve(Eigen::MatrixXd(rows.J.middleCols(c, nr).transpose()));
-    }
-    const Eigen::LDLT<Eigen::MatrixXd> S(rows.J * X);
-    const Eigen::VectorXd dz = -X * S.solve(rows.g);
-    for (int b = 0; b < numBodies(); ++b) {
-      const BodyModel& body = *bodies_[b];
-      double* sp = y + pos_offset_[b];
-      dsp.resize(body.numPositions());
-      body.positionRates(sp, dz.data() + (vel_offset_[b] - v0), dsp.data());
-      Eigen::Map<Eigen::VectorXd>(sp, body.numPositions()) += dsp;
-      body.normalize(sp);
-    }
-  }
-  constraintRows(y, rows);
-  return rows.g.lpNorm<Eigen::Infinity>() <= 1e-13;
+  // By the rigid coordinates where they can close the joints, else in the mass metric
+  // (header comment: the mass metric would move the light, stiff constraint modes).
+  const Eigen::VectorXd saved = Eigen::Map<const Eigen::VectorXd>(y, size_);
+  if (closeConstraints(y, true)) return true;
+  Eigen::Map<Eigen::VectorXd>(y, size_) = saved;
+  return closeConstraints(y, false);
+}
+
+bool MultibodySystem::projectRigidPositions(double* y) {
+  return joints_.empty() || closeConstraints(y, true);
 }
 
 bool MultibodySystem::project(double, const double* y, double* corr) {

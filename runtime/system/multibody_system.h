@@ -19,10 +19,17 @@
 // (Me = E), the integrator keeps seeing an ODE (CVODE's BDF, as for free bodies), closed
 // loops need nothing special, and the drift of the position and velocity constraints that
 // the acceleration form allows is removed by CVODE's projection after every step
-// (CVodeSetProjFn; project() below): the mass-metric orthogonal projection
-//   positions:  dz = -X S^-1 g, s_p <- s_p + (ds_p/dz) dz   (Newton, to |g| <= 1e-13),
-//   velocities: z <- z - X S^-1 J z,
-// which for the BDF corrector is the standard projection onto the constraint manifold.
+// (CVodeSetProjFn; project() below):
+//   positions:  dz = -X_r S_r^-1 g, s_p <- s_p + (ds_p/dz) dz  (Newton, to |g| <= 1e-13)
+//               with X_r = M_r^-1 J_r^T over the rigid coordinates only, M_r the bodies'
+//               rigid mass blocks: a correction in the full mass metric would move mostly
+//               the light, stiff constraint modes at the joints' markers and pump energy
+//               into them at every step (seen: a swinging flexible rod's reactions grew
+//               a hundredfold in 50 ms). Where the rigid motion cannot close the joints
+//               (S_r singular) the full mass metric X = M^-1 J^T serves;
+//   velocities: z_r <- z_r - X_r S_r^-1 J z, likewise by the rigid velocities (a correction
+//               in the full mass metric kicks the same modes' velocities at every step;
+//               seen: undamped 20-90 kHz rod modes growing until they set the step).
 #pragma once
 
 #include <functional>
@@ -102,9 +109,8 @@ class MultibodySystem : public OdeSystem {
   bool project(double t, const double* y, double* corr) override;
   // Projects y itself (positions, then velocities); false if not converged.
   bool projectState(double* y);
-  // Moves only the rigid positions (elastic coordinates held) until the joints close:
-  // Gauss-Newton dz_r = -M_r^-1 J_r^T (J_r M_r^-1 J_r^T)^-1 g over the rigid velocity
-  // columns, M_r the bodies' rigid mass blocks (runtime/system/static_preload.h).
+  // Moves only the rigid positions and velocities (elastic coordinates held) until the
+  // joints close (runtime/system/static_preload.h).
   bool projectRigidPositions(double* y);
   // The joint equations at y.
   void constraintRows(const double* y, ConstraintRows& rows) const;
@@ -168,6 +174,13 @@ class MultibodySystem : public OdeSystem {
                           Eigen::LLT<Eigen::MatrixXd>& S) const;
   // Adds X lambda to the accelerations in ydot, lambda solving the header's Schur system.
   void applyConstraints(const double* y, double* ydot);
+  // Newton steps on the position constraints, dz = -X S^-1 g, then the velocities,
+  // z <- z - X S^-1 J z, with X = M^-1 J^T or, rigidOnly, X = M_r^-1 J_r^T over the rigid
+  // velocity columns (elastic coordinates and velocities held). False if the positions do
+  // not converge to |g| <= 1e-13 or (rigidOnly) the rigid motion cannot close the joints.
+  bool closeConstraints(double* y, bool rigidOnly);
+  bool projectionMobility(const double* y, const ConstraintRows& rows, bool rigidOnly,
+                          Eigen::MatrixXd& X, Eigen::LLT<Eigen::MatrixXd>& S) const;
   // Difference quotients of body b's rates (position rates and accelerations, the contact
   // forces in h_ frozen) with respect to its first npCols positions and nvCols velocities:
   // column(j, d positionRates / d y_j, d accelerations / d y_j) for each state index j.
