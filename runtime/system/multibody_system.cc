@@ -155,7 +155,8 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
 
 bool MultibodySystem::structuredJacobian(double, const double* y, const double* scale,
                                          StructuredJacobian& J) {
-  if (!joints_.empty() || !line_forces_.empty()) return false;  // as jacobian()
+  // Force elements without joints: as jacobian() (their stiffness is not in the terms).
+  if (joints_.empty() && !line_forces_.empty()) return false;
   for (const auto& b : bodies_)
     if (!b->diagonalElasticity()) return false;
   const int n = size_;
@@ -163,6 +164,10 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
   int r = 0;
   for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
   for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
+  r += num_constraints_;  // the joints' projection of the elastic columns (below)
+  // Woodbury costs O(n r^2 + r^3): with as many low-rank columns as half the state (rigid
+  // bodies only, few elastic coordinates) the dense LU is the cheaper Newton matrix.
+  if (!joints_.empty() && 2 * r > n) return false;
   J.n = n;
   J.q_index.clear();
   J.v_index.clear();
@@ -187,13 +192,21 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
       J.q_index.push_back(po + nrp + i);
       J.v_index.push_back(vo + nrv + i);
     }
-    // Rigid columns: difference quotients of the body's rates, contact forces frozen.
-    rateQuotients(b, nrp, nrv, yy, scale,
-                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
-                    J.U.col(col).segment(po, np) = dpr;
-                    J.U.col(col).segment(vo, nv) = da;
-                    J.V(j, col++) = 1.0;
-                  });
+    // Rigid columns: difference quotients of the body's rates, contact forces frozen (with
+    // joints: of every body's constrained rates, which the joints couple).
+    if (joints_.empty()) {
+      rateQuotients(b, nrp, nrv, yy, scale,
+                    [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                      J.U.col(col).segment(po, np) = dpr;
+                      J.U.col(col).segment(vo, nv) = da;
+                      J.V(j, col++) = 1.0;
+                    });
+    } else {
+      constrainedQuotients(b, nrp, nrv, yy, scale, [&](int j, const Eigen::VectorXd& df) {
+        J.U.col(col) = df;
+        J.V(j, col++) = 1.0;
+      });
+    }
     // Elastic columns through M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]]
     // (S = Mrr - C^T C): d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c).
     Eigen::MatrixXd Mrr;
@@ -228,8 +241,68 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
       ++col;
     }
   }
+  if (!joints_.empty()) projectJacobian(y, J, col);
   FFRIGA_ASSERT(col == r, "structured Jacobian: " << col << " of " << r << " columns");
   return true;
+}
+
+void MultibodySystem::constrainedQuotients(
+    int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
+    const std::function<void(int, const Eigen::VectorXd&)>& column) {
+  // h_ holds the contact forces at yy (frozen); the force elements and the joints are
+  // evaluated at every perturbed state.
+  const std::vector<Eigen::VectorXd> contact = h_;
+  auto rates = [&](Eigen::VectorXd& f) {
+    std::vector<Eigen::VectorXd> h = contact;
+    addLineForces(yy.data(), h, nullptr);
+    for (int c = 0; c < numBodies(); ++c) {
+      const double* sp = yy.data() + pos_offset_[c];
+      const double* sv = yy.data() + vel_offset_[c];
+      bodies_[c]->positionRates(sp, sv, f.data() + pos_offset_[c]);
+      bodies_[c]->accelerations(sp, sv, h[c].data(), gravity_, f.data() + vel_offset_[c]);
+    }
+    applyConstraints(yy.data(), f.data());
+  };
+  const double sqrtEps = std::sqrt(std::numeric_limits<double>::epsilon());
+  Eigen::VectorXd f0(size_), f(size_);
+  rates(f0);
+  for (int k = 0; k < npCols + nvCols; ++k) {
+    const int j = k < npCols ? pos_offset_[b] + k : vel_offset_[b] + (k - npCols);
+    const double saved = yy(j);
+    const double delta = sqrtEps * std::max(std::abs(saved), scale[j]);
+    yy(j) = saved + delta;
+    rates(f);
+    yy(j) = saved;
+    column(j, (f - f0) / delta);
+  }
+}
+
+void MultibodySystem::projectJacobian(const double* y, StructuredJacobian& J, int& col) const {
+  // The constrained accelerations are P a with P = I - X S^-1 J_c on the velocity rows
+  // (header comment; the q-dependence of J_c, X and the bias neglected like that of M(q)):
+  //   P (D + U V^T) = D + (P U) V^T - X (S^-1 J_c D),
+  // so U <- P U, and m columns U = -X, V = (S^-1 J_c D)^T with J_c D over the elastic
+  // pairs: d/dq_i (velocity row of qdot_i) = -k_i, d/dqdot_i = -c_i.
+  ConstraintRows rows;
+  constraintRows(y, rows);
+  Eigen::MatrixXd X;
+  Eigen::LLT<Eigen::MatrixXd> S;
+  constraintMobility(y, rows.J, X, S);
+  const int v0 = vel_offset_[0], nv = totalVelocities(), m = num_constraints_;
+  auto Uv = J.U.middleRows(v0, nv);
+  Uv -= X * S.solve(rows.J * Uv);
+  Eigen::MatrixXd JD = Eigen::MatrixXd::Zero(m, size_);
+  for (std::size_t i = 0; i < J.q_index.size(); ++i) {
+    const int vrow = J.v_index[i] - v0;
+    JD.col(J.q_index[i]) = -J.k(static_cast<Eigen::Index>(i)) * rows.J.col(vrow);
+    JD.col(J.v_index[i]) = -J.c(static_cast<Eigen::Index>(i)) * rows.J.col(vrow);
+  }
+  const Eigen::MatrixXd W = S.solve(JD);  // m x n
+  for (int k = 0; k < m; ++k, ++col) {
+    J.U.col(col).setZero();
+    J.U.col(col).segment(v0, nv) = -X.col(k);
+    J.V.col(col) = W.row(k).transpose();
+  }
 }
 
 void MultibodySystem::normalize(double* y) const {

@@ -137,7 +137,10 @@ class MultibodySystem : public OdeSystem {
   // (rank = rigid velocities per body) and one term per active contact point. Neglected, as
   // in jacobian() up to round-off: the q-dependence of M(q) and the velocity-quadratic
   // forces in the elastic columns (first order in q and w; the Newton matrix may be
-  // approximate).
+  // approximate). With joints the rigid columns are quotients of the constrained rates of
+  // all bodies, the other columns are projected onto the constrained motion and each joint
+  // equation adds one column (projectJacobian); force elements need joints here (their
+  // stiffness then enters through the rigid columns only).
   bool structuredJacobian(double t, const double* y, const double* scale,
                           StructuredJacobian& J) override;
   // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
@@ -188,6 +191,15 @@ class MultibodySystem : public OdeSystem {
   void rateQuotients(
       int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
       const std::function<void(int, const Eigen::VectorXd&, const Eigen::VectorXd&)>& column) const;
+  // With joints: difference quotients of the whole system's rates (contact forces in h_
+  // frozen; force elements and constraint forces evaluated) for body b's first npCols
+  // positions and nvCols velocities: column(j, d f / d y_j) over all n rows.
+  void constrainedQuotients(int b, int npCols, int nvCols, Eigen::VectorXd& yy,
+                            const double* scale,
+                            const std::function<void(int, const Eigen::VectorXd&)>& column);
+  // With joints: projects the structured Jacobian's columns onto the constrained motion and
+  // appends the joints' num_constraints_ columns at col (multibody_system.cc).
+  void projectJacobian(const double* y, StructuredJacobian& J, int& col) const;
 };
 
 }  // namespace ffriga
