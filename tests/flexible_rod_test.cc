@@ -123,7 +123,7 @@ integrator: {end_time: 0.01, output_interval: 0.001}
     }
     // At rest in equilibrium: the pin carries the weight, nothing accelerates.
     const std::vector<JointReaction> r = sys.jointReactions(s.y0.data());
-    CHECK(std::abs(r[0].force(2) / (sys.body(0).sid().mass * kG) - 1.0) < 1e-9);
+    CHECK(std::abs(r[0].force(2) / (sys.body(0).sid().mass * kG) - 1.0) < 1e-8);  // as below
     Eigen::VectorXd ydot(sys.size());
     sys.rhs(0.0, s.y0.data(), ydot.data());
     const int nq = sys.body(0).nq();
@@ -181,9 +181,12 @@ integrator: {end_time: 0.01, output_interval: 0.001}
     // Reactions at the clamp: the weight and its moment m g L / 2 about y.
     const double m = sys.body(0).sid().mass;
     const JointReaction r = sys.jointReactions(s.y0.data())[0];
-    CHECK(std::abs(r.force(2) / (m * kG) - 1.0) < 1e-9);
-    CHECK(std::abs(r.moment(1) / (-m * kG * kL / 2.0) - 1.0) <
-          1e-3);  // balances the weight's +m g L / 2
+    // To 1e-8: the preload's residual (1e-10 of the elastic forces) leaves elastic, and so
+    // rigid, accelerations of a few 1e-9 of g (measured 1e-9 to 5e-9, varying with the
+    // SID's last bits: igaprep's assembly is not yet bitwise reproducible, issue 13).
+    CHECK(std::abs(r.force(2) / (m * kG) - 1.0) < 1e-8);
+    // The reaction balances the weight's moment +m g L / 2 about y.
+    CHECK(std::abs(r.moment(1) / (-m * kG * kL / 2.0) - 1.0) < 1e-8);
   }
 }
 
