@@ -25,17 +25,20 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
   dim_ = A.spaceDim();
   setupSide(side_[0], A, surfaceA);
   setupSide(side_[1], B, surfaceB);
-  if (options_.search_margin >= 0.0) {
-    margin_ = options_.search_margin;
-  } else {
-    double size = 0.0;
-    for (const Side& s : side_) {
-      Eigen::MatrixXd P(s.cps.size(), dim_);
-      for (std::size_t i = 0; i < s.cps.size(); ++i) P.row(i) = s.P0.row(s.cps[i]);
-      size = std::max(size, (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm());
-    }
-    margin_ = 0.1 * size;
+  for (const Side& s : side_) {
+    Eigen::MatrixXd P(s.cps.size(), dim_);
+    for (std::size_t i = 0; i < s.cps.size(); ++i) P.row(i) = s.P0.row(s.cps[i]);
+    size_ = std::max(size_, (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm());
   }
+  margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
+}
+
+double ContactPair::boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
+                           const BodyPose& pb) const {
+  const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
+  double gap = -std::numeric_limits<double>::infinity();
+  for (int c = 0; c < dim_; ++c) gap = std::max({gap, wa.lo(c) - wb.hi(c), wb.lo(c) - wa.hi(c)});
+  return gap;
 }
 
 void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {

@@ -66,6 +66,12 @@ class ContactPair {
   int bodyB() const { return index_[1]; }
   const ContactOptions& options() const { return options_; }
 
+  // Separation of the two surfaces' bounding boxes (deformed control points, world
+  // coordinates; the largest gap over the axes, m, <= 0 when they overlap), and the size of
+  // the larger contact surface (the diagonal of its undeformed box, m).
+  double boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
+                const BodyPose& pb) const;
+  double surfaceSize() const { return size_; }
   // Linearisation of the active points of the last evaluate().
   const std::vector<ContactStiffnessTerm>& stiffnessTerms() const { return terms_; }
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
@@ -101,6 +107,7 @@ class ContactPair {
   Side side_[2];
   int dim_ = 3;
   double margin_ = 0.0;
+  double size_ = 0.0;
 };
 
 }  // namespace ffriga

@@ -205,6 +205,10 @@ double BdfIntegrator::step() {
   return t;
 }
 
+void BdfIntegrator::setMaxStep(double h) {
+  impl_->check(CVodeSetMaxStep(impl_->cvode, h), "CVodeSetMaxStep");
+}
+
 void BdfIntegrator::setStopTime(double t) {
   impl_->check(CVodeSetStopTime(impl_->cvode, t), "CVodeSetStopTime");
 }

@@ -68,6 +68,8 @@ class BdfIntegrator {
   // One internal step (CV_ONE_STEP), never past the stop time; returns the time reached.
   double step();
   void setStopTime(double t);
+  // Largest step from now on (s; 0: unlimited).
+  void setMaxStep(double h);
   // Solution at t in the last step's interval [time() - last step, time()], by CVODE's
   // interpolating polynomial (CVodeGetDky).
   void interpolate(double t, Eigen::VectorXd& y) const;

@@ -309,6 +309,20 @@ void MultibodySystem::normalize(double* y) const {
   for (int b = 0; b < numBodies(); ++b) bodies_[b]->normalize(y + pos_offset_[b]);
 }
 
+double MultibodySystem::contactGap(const double* y, double* size) const {
+  double gap = std::numeric_limits<double>::infinity();
+  for (const auto& pair : contacts_) {
+    const int a = pair->bodyA(), b = pair->bodyB();
+    const double g = pair->boxGap(*bodies_[a], bodies_[a]->pose(y + pos_offset_[a]), *bodies_[b],
+                                  bodies_[b]->pose(y + pos_offset_[b]));
+    if (g < gap) {
+      gap = g;
+      if (size) *size = pair->surfaceSize();
+    }
+  }
+  return gap;
+}
+
 SystemEnergies MultibodySystem::energies(const double* y) {
   SystemEnergies e;
   for (int b = 0; b < numBodies(); ++b) {

@@ -147,6 +147,9 @@ class MultibodySystem : public OdeSystem {
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<ContactState>* states);
   SystemEnergies energies(const double* y);
+  // The smallest bounding-box gap of the contact pairs at y (ContactPair::boxGap, m;
+  // +infinity without pairs) and the size of that pair's surfaces (m).
+  double contactGap(const double* y, double* size = nullptr) const;
   // Total linear and angular momentum (about the inertial origin), inertial components.
   void momentum(const double* y, Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
 
@@ -194,8 +197,7 @@ class MultibodySystem : public OdeSystem {
   // With joints: difference quotients of the whole system's rates (contact forces in h_
   // frozen; force elements and constraint forces evaluated) for body b's first npCols
   // positions and nvCols velocities: column(j, d f / d y_j) over all n rows.
-  void constrainedQuotients(int b, int npCols, int nvCols, Eigen::VectorXd& yy,
-                            const double* scale,
+  void constrainedQuotients(int b, int npCols, int nvCols, Eigen::VectorXd& yy, const double* scale,
                             const std::function<void(int, const Eigen::VectorXd&)>& column);
   // With joints: projects the structured Jacobian's columns onto the constrained motion and
   // appends the joints' num_constraints_ columns at col (multibody_system.cc).
