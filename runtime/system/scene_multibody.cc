@@ -98,6 +98,34 @@ Eigen::Vector3d endPosition(const MarkerEnd& e, const std::vector<InitialPose>& 
   return p.r + p.A * x;
 }
 
+// The name (unique among `names`, default PREFIX_i) and the two ends of a joint or force
+// element N: end b a body's marker, end a a marker or the ground (default point: end b's),
+// on two different bodies.
+struct Connection {
+  std::string name;
+  MarkerEnd a, b;
+};
+
+Connection readConnection(const YamlDocument& doc, const YAML::Node& N, const std::string& k,
+                          const std::string& prefix, std::size_t i, std::set<std::string>& names,
+                          const std::map<std::string, int>& index, const BodyMarkers& markers,
+                          const MultibodySystem& sys, const std::vector<InitialPose>& pose) {
+  Connection c;
+  c.name = N["name"] ? getString(doc, N["name"], k + ".name") : Str() << prefix << "_" << i;
+  if (!names.insert(c.name).second)
+    throw inputError(doc, N["name"], k + ".name", Str() << "name '" << c.name << "' is used twice");
+  c.b = readEnd(doc, N["b"], k + ".b", index, markers, sys, nullptr);
+  if (c.b.body < 0)
+    throw inputError(doc, N["b"], k + ".b", "end b must be a body; put the ground at end a");
+  const Eigen::Vector3d rb = endPosition(c.b, pose);
+  c.a = readEnd(doc, N["a"], k + ".a", index, markers, sys, &rb);
+  if (c.a.body == c.b.body)
+    throw inputError(doc, N["b"], k + ".b",
+                     Str() << "a " << prefix << " connects two different bodies; both ends are on '"
+                           << sys.body(c.b.body).name() << "'");
+  return c;
+}
+
 }  // namespace
 
 BodyMarkers collectMarkers(const YamlDocument& doc, const MultibodySystem& sys) {
@@ -139,24 +167,14 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
   for (std::size_t j = 0; joints && j < joints.size(); ++j) {
     const YAML::Node J = joints[j];
     const std::string k = Str() << "joints[" << j << "]";
-    const std::string name =
-        J["name"] ? getString(doc, J["name"], k + ".name") : Str() << "joint_" << j;
-    if (!names.insert(name).second)
-      throw inputError(doc, J["name"], k + ".name",
-                       Str() << "joint name '" << name << "' is used twice");
+    Connection c = readConnection(doc, J, k, "joint", j, names, index, markers, sys, pose);
+    const std::string& name = c.name;
     const std::string typeName = getString(doc, J["type"], k + ".type");
     JointType type = JointType::kSpherical;
     for (const auto& [spelling, t] : kJointTypes)
       if (typeName == spelling) type = t;
-    MarkerEnd b = readEnd(doc, J["b"], k + ".b", index, markers, sys, nullptr);
-    if (b.body < 0)
-      throw inputError(doc, J["b"], k + ".b", "end b must be a body; put the ground at end a");
-    const Eigen::Vector3d rb = endPosition(b, pose);
-    MarkerEnd a = readEnd(doc, J["a"], k + ".a", index, markers, sys, &rb);
-    if (a.body == b.body)
-      throw inputError(doc, J["b"], k + ".b",
-                       Str() << "a joint connects two different bodies; both ends are on '"
-                             << sys.body(b.body).name() << "'");
+    MarkerEnd& a = c.a;
+    MarkerEnd& b = c.b;
     const bool needsAxis = type == JointType::kRevolute || type == JointType::kPrismatic;
     if (needsAxis && !J["axis"])
       throw inputError(doc, J, k, Str() << "a " << typeName << " joint needs 'axis'");
@@ -203,18 +221,11 @@ void addForceElements(const YamlDocument& doc, const std::map<std::string, int>&
   for (std::size_t f = 0; list && f < list.size(); ++f) {
     const YAML::Node F = list[f];
     const std::string k = Str() << "force_elements[" << f << "]";
-    const std::string name =
-        F["name"] ? getString(doc, F["name"], k + ".name") : Str() << "force_" << f;
-    if (!names.insert(name).second)
-      throw inputError(doc, F["name"], k + ".name",
-                       Str() << "force element name '" << name << "' is used twice");
-    MarkerEnd b = readEnd(doc, F["b"], k + ".b", index, markers, sys, nullptr);
-    if (b.body < 0)
-      throw inputError(doc, F["b"], k + ".b", "end b must be a body; put the ground at end a");
+    Connection c = readConnection(doc, F, k, "force", f, names, index, markers, sys, pose);
+    const std::string& name = c.name;
+    MarkerEnd& a = c.a;
+    MarkerEnd& b = c.b;
     const Eigen::Vector3d rb = endPosition(b, pose);
-    MarkerEnd a = readEnd(doc, F["a"], k + ".a", index, markers, sys, &rb);
-    if (a.body == b.body)
-      throw inputError(doc, F["b"], k + ".b", "a force element acts between two different bodies");
     const double l0 = (rb - endPosition(a, pose)).norm();
     const std::string type = getString(doc, F["type"], k + ".type");
     auto forbid = [&](const char* key) {
