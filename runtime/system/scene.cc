@@ -371,6 +371,8 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
   if (const YAML::Node O = root["outputs"]) {
     if (O["flush_rows"]) scene.flush_rows = getInt(doc, O["flush_rows"], "outputs.flush_rows");
     s.progress_interval = doubleOr(doc, O["progress_interval"], "outputs.progress_interval", 1.0);
+    s.contact_output_interval =
+        doubleOr(doc, O["contact_output_interval"], "outputs.contact_output_interval", 0.0);
   }
   return scene;
 }

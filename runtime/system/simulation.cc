@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <vector>
 #include <cstdio>
 
 #include "common/error.h"
@@ -135,18 +136,6 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       const Clock::time_point s0 = Clock::now();
       if (approach.active()) approach.update(integ, t);
       t = integ.step();
-      // Outputs inside this step, by interpolation.
-      while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14)) {
-        integ.interpolate(std::min(outputTime(nextOut), t), y);
-        // The interpolant leaves the constraint manifold by about the local error: an
-        // output row is projected onto it like every step's state.
-        if (system.hasConstraints() && !system.projectState(y.data()))
-          throw ComputeError(Str() << "projecting the output at t = " << outputTime(nextOut)
-                                   << " s onto the joints' constraints did not converge");
-        system.normalize(y.data());
-        writer.append(outputTime(nextOut), y, system);
-        ++nextOut;
-      }
       // Phase bookkeeping (paper Table 3): contact state at the end of the step, as the
       // step's last right-hand side saw it (MultibodySystem::lastRhsContacts).
       bool contact = false;
@@ -159,6 +148,30 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         const double force = -system.lastRhsLineForces()[f].tension;
         contact = contact || force > 0.0;
         report.max_normal_force = std::max(report.max_normal_force, force);
+      }
+      // Outputs inside this step, by interpolation: the regular ones and, in a step that
+      // begins or ends in contact, every multiple of the contact output interval.
+      std::vector<double> times;
+      while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14))
+        times.push_back(outputTime(nextOut++));
+      const double dtc = settings.contact_output_interval;
+      if (dtc > 0.0 && (contact || phase == 1)) {
+        for (long k = static_cast<long>(std::floor(tPrev / dtc)) + 1; k * dtc <= t; ++k) {
+          bool regular = false;
+          for (double r : times) regular = regular || std::abs(r - k * dtc) <= 1e-9 * dtc;
+          if (k * dtc > tPrev && !regular) times.push_back(k * dtc);
+        }
+        std::sort(times.begin(), times.end());
+      }
+      for (const double to : times) {
+        integ.interpolate(std::min(to, t), y);
+        // The interpolant leaves the constraint manifold by about the local error: an
+        // output row is projected onto it like every step's state.
+        if (system.hasConstraints() && !system.projectState(y.data()))
+          throw ComputeError(Str() << "projecting the output at t = " << to
+                                   << " s onto the joints' constraints did not converge");
+        system.normalize(y.data());
+        writer.append(to, y, system);
       }
       if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
       if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);

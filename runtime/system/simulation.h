@@ -22,6 +22,8 @@ namespace ffriga {
 struct SimulationSettings {
   double end_time = 0.0;         // s
   double output_interval = 0.0;  // s; the first row is at t = 0
+  // s; > 0: also a row at every multiple of it in steps that begin or end in contact
+  double contact_output_interval = 0.0;
   IntegratorOptions integrator;
   int verbosity = 1;               // 0: silent; >= 1: progress on stderr
   double progress_interval = 1.0;  // s of wall time between progress lines
