@@ -61,8 +61,8 @@ void MultibodySystem::constraintRows(const double* y, ConstraintRows& rows) cons
   }
 }
 
-void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd& J,
-                                         Eigen::MatrixXd& X, Eigen::LLT<Eigen::MatrixXd>& S) const {
+void MultibodySystem::inverseMassTimes(const double* y, const Eigen::MatrixXd& J,
+                                       Eigen::MatrixXd& X) const {
   const int v0 = vel_offset_[0];
   X.setZero(J.cols(), J.rows());
   for (int b = 0; b < numBodies(); ++b) {
@@ -72,6 +72,11 @@ void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd&
     bodies_[b]->solveMass(y + pos_offset_[b], B);
     X.middleRows(c, nv) = B;
   }
+}
+
+void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd& J,
+                                         Eigen::MatrixXd& X, Eigen::LLT<Eigen::MatrixXd>& S) const {
+  inverseMassTimes(y, J, X);
   S.compute(J * X);
   if (S.info() != Eigen::Success)
     throw ComputeError(

@@ -114,6 +114,8 @@ class MultibodySystem : public OdeSystem {
   bool projectRigidPositions(double* y);
   // The joint equations at y.
   void constraintRows(const double* y, ConstraintRows& rows) const;
+  // X = M^-1 J^T over the bodies (rows of the system's velocities; J over them).
+  void inverseMassTimes(const double* y, const Eigen::MatrixXd& J, Eigen::MatrixXd& X) const;
   // Multipliers at y (one right-hand side), per joint its reaction on end b
   // (runtime/constraints/joint.h).
   std::vector<JointReaction> jointReactions(const double* y);
@@ -175,7 +177,7 @@ class MultibodySystem : public OdeSystem {
   // Adds the force elements' generalised forces at y to h (states: optional diagnostics).
   void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<LineForceState>* states) const;
-  // X = M^-1 J^T over the bodies (rows of the system's velocities) and S = J X.
+  // X = M^-1 J^T (inverseMassTimes) and the factor of S = J X; ComputeError if singular.
   void constraintMobility(const double* y, const Eigen::MatrixXd& J, Eigen::MatrixXd& X,
                           Eigen::LLT<Eigen::MatrixXd>& S) const;
   // Adds X lambda to the accelerations in ydot, lambda solving the header's Schur system.

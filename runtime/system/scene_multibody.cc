@@ -370,14 +370,8 @@ void checkInitialConstraints(const YamlDocument& doc, MultibodySystem& sys, Eige
   // Redundancy: joints 0..j together must have independent equations, i.e. a positive
   // definite J M^-1 J^T; scaled to unit diagonal, its smallest eigenvalue measures how
   // independent the rows are (1e-10: far below any real joint set, far above round-off).
-  Eigen::MatrixXd X(rows.J.cols(), rows.J.rows());
-  X.setZero();
-  for (int b = 0; b < sys.numBodies(); ++b) {
-    const int c = sys.velocityOffset(b) - v0, nv = sys.body(b).numVelocities();
-    Eigen::MatrixXd B = rows.J.middleCols(c, nv).transpose();
-    sys.body(b).solveMass(y0.data() + sys.positionOffset(b), B);
-    X.middleRows(c, nv) = B;
-  }
+  Eigen::MatrixXd X;
+  sys.inverseMassTimes(y0.data(), rows.J, X);
   const Eigen::MatrixXd S = rows.J * X;
   row = 0;
   for (int j = 0; j < sys.numJoints(); ++j) {

@@ -4,8 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
-#include <vector>
 #include <cstdio>
+#include <vector>
 
 #include "common/error.h"
 
