@@ -70,7 +70,7 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
                 p[i]->rhs_evals);
   bool hertzPoints = false;
   for (int f = 0; f < scene.system->numLineForces(); ++f)
-    hertzPoints = hertzPoints || std::string(scene.system->lineForce(f).kind()) == "hertz_contact";
+    hertzPoints = hertzPoints || scene.system->lineForce(f).isContact();
   if (scene.system->numContacts() > 0 || hertzPoints) {
     std::printf("  maximum contact force %.6g N (over the steps and pairs)\n", r.max_normal_force);
   }

@@ -137,6 +137,7 @@ JointReaction Joint::reaction(const double* spB, const JointRows& rows,
   JointReaction out;
   out.force = A * F;
   out.moment = A * (N - p.cross(F));
+  out.violation = rows.g.lpNorm<Eigen::Infinity>();
   return out;
 }
 

@@ -45,6 +45,7 @@ struct JointRows {
 struct JointReaction {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N m, about the marker point R_b
+  double violation = 0.0;  // largest |g| of the joint's position equations (m or 1)
 };
 
 class Joint {
@@ -64,7 +65,8 @@ class Joint {
   void evaluate(const double* spA, const double* svA, const double* spB, const double* svB,
                 JointRows& rows) const;
   // The load on body b for the multipliers lambda of this joint's equations (generalised
-  // force Jb^T lambda, its rigid part reduced to the marker point).
+  // force Jb^T lambda, its rigid part reduced to the marker point), with the violation of
+  // the equations in `rows`.
   JointReaction reaction(const double* spB, const JointRows& rows,
                          const Eigen::VectorXd& lambda) const;
 

@@ -15,6 +15,7 @@ class HertzPointContact : public LineForce {
   HertzPointContact(std::string name, MarkerEnd a, MarkerEnd b, const HertzSphere& sa,
                     const HertzSphere& sb);
   const char* kind() const override { return "hertz_contact"; }
+  bool isContact() const override { return true; }
   double stiffness() const { return K_; }
   double radiusSum() const { return radii_; }
 

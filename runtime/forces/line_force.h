@@ -29,6 +29,9 @@ class LineForce {
   const std::string& name() const { return name_; }
   const MarkerEnd& end(int i) const { return i == 0 ? a_ : b_; }
   virtual const char* kind() const = 0;
+  // True for contact laws (a compressive force means contact: the phase table of Table 3 and
+  // the headline contact attributes count it).
+  virtual bool isContact() const { return false; }
 
   // Adds the generalised forces at the ends' states (nullptr for the ground) to ha, hb
   // (each body's numVelocities entries; ha unused for the ground).

@@ -135,16 +135,10 @@ void ResultWriter::createMultibodySeries(const MultibodySystem& system) {
 void ResultWriter::appendMultibodyRows(const Eigen::VectorXd& y, MultibodySystem& system) {
   if (system.numJoints() > 0) {
     const std::vector<JointReaction> r = system.jointReactions(y.data());
-    ConstraintRows rows;
-    system.constraintRows(y.data(), rows);
-    int row = 0;
     for (int j = 0; j < system.numJoints(); ++j) {
-      const int m = system.joint(j).numEquations();
-      const double violation = rows.g.segment(row, m).lpNorm<Eigen::Infinity>();
-      row += m;
       appendRow(*joints_[j].force, r[j].force.data());
       appendRow(*joints_[j].moment, r[j].moment.data());
-      appendRow(*joints_[j].violation, &violation);
+      appendRow(*joints_[j].violation, &r[j].violation);
     }
   }
   const std::vector<LineForceState> f = system.lineForceStates(y.data());

@@ -181,7 +181,7 @@ bool MultibodySystem::projectState(double* y) {
   return closeConstraints(y, false);
 }
 
-bool MultibodySystem::projectRigidPositions(double* y) {
+bool MultibodySystem::projectStateRigidly(double* y) {
   return joints_.empty() || closeConstraints(y, true);
 }
 

@@ -111,7 +111,7 @@ class MultibodySystem : public OdeSystem {
   bool projectState(double* y);
   // Moves only the rigid positions and velocities (elastic coordinates held) until the
   // joints close (runtime/system/static_preload.h).
-  bool projectRigidPositions(double* y);
+  bool projectStateRigidly(double* y);
   // The joint equations at y.
   void constraintRows(const double* y, ConstraintRows& rows) const;
   // X = M^-1 J^T over the bodies (rows of the system's velocities; J over them).

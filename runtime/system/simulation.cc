@@ -144,7 +144,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
       }
       for (int f = 0; f < system.numLineForces(); ++f) {  // Hertz point contacts
-        if (std::string(system.lineForce(f).kind()) != "hertz_contact") continue;
+        if (!system.lineForce(f).isContact()) continue;
         const double force = -system.lastRhsLineForces()[f].tension;
         contact = contact || force > 0.0;
         report.max_normal_force = std::max(report.max_normal_force, force);

@@ -38,7 +38,7 @@ PreloadReport staticPreload(MultibodySystem& sys, Eigen::VectorXd& y) {
   if (n == 0) return report;
   Eigen::VectorXd ydot(y.size());
   auto residual = [&](Eigen::VectorXd& state, Eigen::VectorXd& F) {
-    if (!sys.projectRigidPositions(state.data()))
+    if (!sys.projectStateRigidly(state.data()))
       throw ComputeError("static preload: the joints could not be closed at the deformed markers");
     sys.rhs(0.0, state.data(), ydot.data());
     F.resize(n);
