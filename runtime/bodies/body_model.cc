@@ -36,6 +36,14 @@ void BodyModel::setDamping(const Eigen::MatrixXd& De) {
   checkDiagonal();
 }
 
+void BodyModel::setQuasiStatic(double cutoff_hz) {
+  if (!diagonal_) {
+    throw InputError(Str() << "body '" << name_ << "': quasi-static modes need a SID with Me = E "
+                           << "and diagonal Ke (igaprep's modal form, Eq. 13)");
+  }
+  qs_ = QuasiStaticModes::select(k_, cutoff_hz);
+}
+
 void BodyModel::checkDiagonal() {
   // Off-diagonal parts below 1e-8 of the largest diagonal entry only perturb the Newton
   // matrix, which needs to be approximate only (modified Newton iteration); the right-hand

@@ -23,6 +23,7 @@
 #include <Eigen/Dense>
 
 #include "common/sid.h"
+#include "runtime/bodies/quasi_static_modes.h"
 
 namespace ffriga {
 
@@ -49,6 +50,17 @@ class BodyModel {
   // Modal damping De (nq x nq), initially the SID's; a scene may override it.
   const Eigen::MatrixXd& damping() const { return De_; }
   void setDamping(const Eigen::MatrixXd& De);
+
+  // Quasi-static elastic coordinates (runtime/bodies/quasi_static_modes.h): those with
+  // frequency >= cutoff_hz; none before the first call. Throws InputError unless Me = E and
+  // Ke is diagonal (diagonalElasticity()).
+  void setQuasiStatic(double cutoff_hz);
+  const QuasiStaticModes& quasiStatic() const { return qs_; }
+  // Applies the quasi-static coordinates' rates to the body's rates (positionRates() into
+  // spdot, accelerations() into accel; QuasiStaticModes::apply).
+  void applyQuasiStatic(double* spdot, double* accel) const {
+    if (!qs_.empty()) qs_.apply(numRigidPositions(), numRigidVelocities(), spdot, accel);
+  }
 
   // Structure for the Newton matrix (runtime/integration/structured_newton.h). True if Me = E and
   // Ke, De are diagonal (Eq. 13; to 1e-8 relative: the Newton matrix may be approximate), with
@@ -102,6 +114,7 @@ class BodyModel {
   bool exactly_diagonal_ = false;       // Me = E, Ke, De diagonal exactly (igaprep's SIDs): the
                                         // right-hand side may use k_, c_ in O(nq)
   Eigen::VectorXd k_, c_;
+  QuasiStaticModes qs_;
 
  private:
   void checkDiagonal();

@@ -11,6 +11,7 @@ Eigen::MatrixXd StructuredJacobian::dense() const {
     J(v_index[i], q_index[i]) -= k(i);
     J(v_index[i], v_index[i]) -= c(i);
   }
+  for (std::size_t i = 0; i < f_index.size(); ++i) J(f_index[i], f_index[i]) -= f_rate(i);
   return J;
 }
 
@@ -26,6 +27,7 @@ void StructuredNewtonMatrix::applyNdInverse(Eigen::Ref<Eigen::VectorXd> x) const
     x(p) = ((1.0 + g * J.c(i)) * xp + g * xv) / det;
     x(v) = (-g * J.k(i) * xp + xv) / det;
   }
+  for (std::size_t i = 0; i < J.f_index.size(); ++i) x(J.f_index[i]) /= 1.0 + g * J.f_rate(i);
 }
 
 bool StructuredNewtonMatrix::factor(double gamma, const StructuredJacobian& J) {

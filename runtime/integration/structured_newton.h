@@ -4,7 +4,9 @@
 //   J = D + U V^T,
 //
 // D: 2 x 2 blocks d/dt [q_i; qdot_i] = [qdot_i; -k_i q_i - c_i qdot_i] of the elastic
-//    coordinates (Me = E, Ke = diag(k), De = diag(c), Eq. 13), zero elsewhere;
+//    coordinates (Me = E, Ke = diag(k), De = diag(c), Eq. 13), 1 x 1 blocks
+//    d/dt y_j = -rate_j y_j of the quasi-static coordinates (runtime/bodies/
+//    quasi_static_modes.h: rate = 1 / tau), zero elsewhere;
 // U V^T: low rank r: the rigid-body rows and columns, the inertial coupling of the rigid and
 //    elastic coordinates through M(q)^-1, and one term per active contact point (Eq. 17-18).
 //
@@ -14,7 +16,7 @@
 // at O(n r^2 + r^3) per factorisation and O(n r) per solve, against O(n^3) and O(n^2) for a
 // dense LU: the difference between minutes and seconds for 3D bodies with hundreds of
 // elastic coordinates. Each 2 x 2 block of Nd, [[1, -g], [g k, 1 + g c]], has determinant
-// 1 + g c + g^2 k >= 1 for k, c >= 0.
+// 1 + g c + g^2 k >= 1 for k, c >= 0; a 1 x 1 block is 1 + g rate >= 1.
 #pragma once
 
 #include <vector>
@@ -27,6 +29,8 @@ struct StructuredJacobian {
   int n = 0;                          // size of the state
   std::vector<int> q_index, v_index;  // state indices of each elastic pair (q_i, qdot_i)
   Eigen::VectorXd k, c;               // 1/s^2 and 1/s: stiffness and damping of each pair
+  std::vector<int> f_index;           // state indices of the first-order (quasi-static) entries
+  Eigen::VectorXd f_rate;             // 1/s: their decay rates
   Eigen::MatrixXd U, V;               // n x r
   Eigen::MatrixXd dense() const;      // D + U V^T (tests)
 };

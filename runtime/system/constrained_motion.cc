@@ -172,13 +172,16 @@ bool MultibodySystem::closeConstraints(double* y, bool rigidOnly) {
 }
 
 bool MultibodySystem::projectState(double* y) {
-  if (joints_.empty()) return true;
-  // By the rigid coordinates where they can close the joints, else in the mass metric
-  // (header comment: the mass metric would move the light, stiff constraint modes).
-  const Eigen::VectorXd saved = Eigen::Map<const Eigen::VectorXd>(y, size_);
-  if (closeConstraints(y, true)) return true;
-  Eigen::Map<Eigen::VectorXd>(y, size_) = saved;
-  return closeConstraints(y, false);
+  if (!joints_.empty()) {
+    // By the rigid coordinates where they can close the joints, else in the mass metric
+    // (header comment: the mass metric would move the light, stiff constraint modes).
+    const Eigen::VectorXd saved = Eigen::Map<const Eigen::VectorXd>(y, size_);
+    if (!closeConstraints(y, true)) {
+      Eigen::Map<Eigen::VectorXd>(y, size_) = saved;
+      if (!closeConstraints(y, false)) return false;
+    }
+  }
+  return projectQuasiStatic(y);
 }
 
 bool MultibodySystem::projectStateRigidly(double* y) {

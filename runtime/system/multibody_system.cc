@@ -78,6 +78,7 @@ void MultibodySystem::evaluateRates(const double* y, double* ydot,
     const double* sv = y + vel_offset_[b];
     body.positionRates(sp, sv, ydot + pos_offset_[b]);
     body.accelerations(sp, sv, h_[b].data(), gravity_, ydot + vel_offset_[b]);
+    body.applyQuasiStatic(ydot + pos_offset_[b], ydot + vel_offset_[b]);
   }
   if (!joints_.empty()) applyConstraints(y, ydot);
 }
@@ -150,6 +151,9 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
       J.middleRows(vel_offset_[b], dh[b].rows()) += dh[b];
     }
   }
+  for (int b = 0; b < numBodies(); ++b)
+    bodies_[b]->quasiStatic().applyToRows(pos_offset_[b] + bodies_[b]->numRigidPositions(),
+                                          vel_offset_[b] + bodies_[b]->numRigidVelocities(), J);
   return true;
 }
 
@@ -171,6 +175,8 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
   J.n = n;
   J.q_index.clear();
   J.v_index.clear();
+  J.f_index.clear();
+  std::vector<double> fRate;
   J.U.setZero(n, r);
   J.V.setZero(n, r);
   int pairs = 0;
@@ -185,8 +191,16 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
     const int np = body.numPositions(), nv = body.numVelocities(), nq = body.nq();
     const int nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
     const int po = pos_offset_[b], vo = vel_offset_[b];
-    // Elastic pairs: d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E).
-    for (int i = 0; i < nq; ++i) {
+    // Elastic pairs: d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E); quasi-static
+    // coordinates: d/dt q = -q / tau + ... (their rows of U are transformed below).
+    const QuasiStaticModes& qs = body.quasiStatic();
+    for (int s = 0, i = 0; i < nq; ++i) {
+      if (s < qs.size() && qs.index[s] == i) {
+        J.f_index.push_back(po + nrp + i);
+        fRate.push_back(1.0 / qs.tau);
+        ++s;
+        continue;
+      }
       J.k(J.q_index.size()) = body.stiffnessDiagonal()(i);
       J.c(J.q_index.size()) = body.dampingDiagonal()(i);
       J.q_index.push_back(po + nrp + i);
@@ -241,6 +255,13 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
       ++col;
     }
   }
+  J.k.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
+  J.c.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
+  J.f_rate = Eigen::Map<const Eigen::VectorXd>(fRate.data(), static_cast<Eigen::Index>(fRate.size()));
+  // Quasi-static coordinates: their position rows are their acceleration rows / (k tau).
+  for (int b = 0; b < numBodies(); ++b)
+    bodies_[b]->quasiStatic().applyToRows(pos_offset_[b] + bodies_[b]->numRigidPositions(),
+                                          vel_offset_[b] + bodies_[b]->numRigidVelocities(), J.U);
   if (!joints_.empty()) projectJacobian(y, J, col);
   FFRIGA_ASSERT(col == r, "structured Jacobian: " << col << " of " << r << " columns");
   return true;

@@ -103,11 +103,17 @@ class MultibodySystem : public OdeSystem {
 
   void rhs(double t, const double* y, double* ydot) override;
   void normalize(double* y) const override;
-  bool hasConstraints() const override { return !joints_.empty(); }
+  bool hasConstraints() const override { return !joints_.empty() || hasQuasiStatic(); }
+  // True if any body has quasi-static coordinates (runtime/bodies/quasi_static_modes.h).
+  bool hasQuasiStatic() const;
+  // Moves the quasi-static coordinates onto their manifold a_s(y) = 0
+  // (runtime/system/quasi_static_projection.cc); false if Newton's iteration did not converge.
+  bool projectQuasiStatic(double* y);
   // CVODE's projection: corr = P(y) - y with P the projection of the header comment.
   // Returns false if Newton's iteration on the positions did not converge.
   bool project(double t, const double* y, double* corr) override;
-  // Projects y itself (positions, then velocities); false if not converged.
+  // Projects y itself (joints: positions, then velocities; then the quasi-static
+  // coordinates); false if not converged.
   bool projectState(double* y);
   // Moves only the rigid positions and velocities (elastic coordinates held) until the
   // joints close (runtime/system/static_preload.h).

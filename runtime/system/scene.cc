@@ -9,6 +9,7 @@
 #include "common/json_schema.h"
 #include "common/schemas.h"
 #include "runtime/bodies/axisymmetric_body.h"
+#include "runtime/bodies/quasi_static_rule.h"
 #include "runtime/bodies/floating_body.h"
 #include "runtime/bodies/rigid_body.h"
 #include "runtime/bodies/rotation.h"
@@ -81,7 +82,7 @@ std::map<std::string, int> checkNames(const YamlDocument& doc) {
     if (sid == rigid)
       throw inputError(doc, bodies[b], Str() << "bodies[" << b << "]",
                        "expected either 'sid' (a body from igaprep) or 'rigid' (mass and inertia)");
-    for (const char* key : {"frozen", "q", "qdot", "damping", "surface"})
+    for (const char* key : {"frozen", "q", "qdot", "damping", "surface", "quasi_static"})
       if (rigid && bodies[b][key])
         throw inputError(doc, bodies[b][key], Str() << "bodies[" << b << "]." << key,
                          Str() << "'" << key << "' is for SID bodies, not rigid ones");
@@ -158,6 +159,50 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
     }
   }
   return sids;
+}
+
+// The body's quasi-static coordinates (runtime/bodies/quasi_static_rule.h): the scene's
+// `quasi_static` key, else the rule's default. Their initial velocities must be zero.
+void applyQuasiStaticRule(const YamlDocument& doc, const YAML::Node& B, const std::string& k,
+                          BodyModel& model, const Eigen::VectorXd& qdot) {
+  if (model.nq() == 0) return;
+  QuasiStaticRule rule;
+  const YAML::Node Q = B["quasi_static"];
+  if (Q && Q.IsScalar()) {
+    rule.kind = QuasiStaticRule::Kind::kNone;  // `false` (the schema admits no other scalar)
+  } else if (Q) {
+    if (Q["above_hz"] && Q["above_first_elastic"])
+      throw inputError(doc, Q, k + ".quasi_static", "give either above_hz or above_first_elastic, not both");
+    if (Q["above_hz"]) {
+      rule.kind = QuasiStaticRule::Kind::kAboveHz;
+      rule.value = getDouble(doc, Q["above_hz"], k + ".quasi_static.above_hz");
+    } else if (Q["above_first_elastic"]) {
+      rule.kind = QuasiStaticRule::Kind::kAboveFirstElastic;
+      rule.value = getDouble(doc, Q["above_first_elastic"], k + ".quasi_static.above_first_elastic");
+    }
+  }
+  // Joints impose acceleration-level constraints that assume every coordinate has inertia
+  // (multibody_system.h): quasi-static coordinates are not combined with them (yet).
+  const YAML::Node joints = doc.root["joints"];
+  if (joints && joints.size() > 0) {
+    if (Q && rule.kind != QuasiStaticRule::Kind::kNone)
+      throw inputError(doc, Q, k + ".quasi_static",
+                       "quasi-static coordinates are not available in scenes with joints: give "
+                       "'quasi_static: false' and damp the high modes (body file 'damping')");
+    return;
+  }
+  const double cutoff = quasiStaticCutoffHz(model.stiffnessDiagonal(), rule);
+  if (!std::isfinite(cutoff)) return;
+  try {
+    model.setQuasiStatic(cutoff);
+  } catch (const InputError& e) {
+    throw inputError(doc, Q ? Q : B, k + ".quasi_static", e.what());
+  }
+  for (int i : model.quasiStatic().index)
+    if (qdot(i) != 0.0)
+      throw inputError(doc, B["qdot"], k + ".qdot",
+                       Str() << "qdot[" << i << "] = " << qdot(i) << " belongs to a quasi-static "
+                             << "coordinate (no velocity of its own): expected 0");
 }
 
 }  // namespace
@@ -256,6 +301,7 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
         model->setDamping(getDouble(doc, d["scale"], k + ".damping.scale") * sid.De);
       }
     }
+    applyQuasiStaticRule(doc, B, k, *model, in.qd);
     sys.addBody(std::move(model));
     init.push_back(in);
   }
@@ -358,9 +404,16 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
       }
       for (int i = 0; i < 4; ++i) sp[3 + i] = p[i], ap[3 + i] = aRot;
     }
+    // Elastic coordinates: the tolerances are displacements (m) and velocities (m/s) of the
+    // body's points, so coordinate j gets atol / max |Phi_j| (Phi_j in m per unit q_j): a
+    // local interface mode moves the contact surface by 1e4-1e6 m per unit q (sphere2d_h3)
+    // where a global mode moves it by ~10; a common atol in q units let the local modes
+    // move the surface by nanometres, a tenth of the penetration.
     for (int j = 0; j < body.nq(); ++j) {
       sp[nr + j] = in.q(j), sv[nv + j] = in.qd(j);
-      ap[nr + j] = aPos * sq, av[nv + j] = aVel * sq;
+      const double phi = body.sid().Phi.col(j).cwiseAbs().maxCoeff();
+      const double scale = phi > 0.0 ? 1.0 / phi : sq;
+      ap[nr + j] = aPos * scale, av[nv + j] = aVel * scale;
     }
   }
   checkInitialConstraints(doc, sys, scene.y0);

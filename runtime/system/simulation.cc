@@ -169,7 +169,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         // output row is projected onto it like every step's state.
         if (system.hasConstraints() && !system.projectState(y.data()))
           throw ComputeError(Str() << "projecting the output at t = " << to
-                                   << " s onto the joints' constraints did not converge");
+                                   << " s onto the joints' constraints and the quasi-static manifold did not converge");
         system.normalize(y.data());
         writer.append(to, y, system);
       }
@@ -196,6 +196,12 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         std::fprintf(stderr,
                      "ffrsim: t = %.6g s (%.1f %%), %ld steps, %.1f s elapsed, ~%.1f s left\n", t,
                      100.0 * t / settings.end_time, now.steps, elapsed, left);
+        if (settings.verbosity > 1)
+          std::fprintf(stderr,
+                       "ffrsim:   step %.3g s, order %d, %ld error-test and %ld convergence "
+                       "failures, %ld Jacobians, %ld Newton iterations\n",
+                       now.last_step, now.last_order, now.error_test_failures,
+                       now.convergence_failures, now.jacobian_evals, now.nonlinear_iterations);
       }
     }
     report.final_time = t;

@@ -1,0 +1,34 @@
+#include "runtime/bodies/quasi_static_modes.h"
+
+#include <cmath>
+
+#include "common/error.h"
+
+namespace ffriga {
+
+QuasiStaticModes QuasiStaticModes::select(const Eigen::VectorXd& k, double cutoff_hz) {
+  FFRIGA_CHECK(cutoff_hz > 0.0 && std::isfinite(cutoff_hz), "quasi-static cutoff " << cutoff_hz);
+  QuasiStaticModes m;
+  m.cutoff_hz = cutoff_hz;
+  const double omegaCut = 2.0 * M_PI * cutoff_hz;
+  m.tau = kRelaxation / omegaCut;
+  std::vector<double> stiff;
+  for (int i = 0; i < k.size(); ++i) {
+    if (k(i) >= omegaCut * omegaCut) {
+      m.index.push_back(i);
+      stiff.push_back(k(i));
+    }
+  }
+  m.stiffness = Eigen::Map<const Eigen::VectorXd>(stiff.data(), static_cast<Eigen::Index>(stiff.size()));
+  return m;
+}
+
+void QuasiStaticModes::apply(int nrp, int nrv, double* spdot, double* accel) const {
+  for (int s = 0; s < size(); ++s) {
+    const int i = index[s];
+    spdot[nrp + i] = accel[nrv + i] / (stiffness(s) * tau);
+    accel[nrv + i] = 0.0;
+  }
+}
+
+}  // namespace ffriga
