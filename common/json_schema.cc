@@ -321,16 +321,24 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
           doc, tag ? tag : where, join(key, discriminator),
           Str() << "expected one of " << allowed.str() << "; found " << describeNode(tag));
     }
-    std::string firstError;
+    // Otherwise the first branch that accepts the node; if none does, the error of the
+    // first branch whose type is the node's kind (a mapping against the object branch), so
+    // that the message names the offending inner key rather than "expected a boolean".
+    std::string firstError, kindError;
     for (const auto& branch : one) {
       try {
         check(doc, branch, node, parent, key);
         return;
       } catch (const InputError& e) {
         if (firstError.empty()) firstError = e.what();
+        const YAML::Node type = resolve(branch)["type"];
+        const bool sameKind = type && type.IsScalar() &&
+                              ((type.Scalar() == "object") == node.IsMap()) &&
+                              ((type.Scalar() == "array") == node.IsSequence());
+        if (sameKind && kindError.empty()) kindError = e.what();
       }
     }
-    throw InputError(firstError);
+    throw InputError(kindError.empty() ? firstError : kindError);
   }
 }
 

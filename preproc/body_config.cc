@@ -256,7 +256,13 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
     for (std::size_t i = 0; damping && i < damping.size(); ++i) {
       const std::string key = Str() << "reduction.damping[" << i << "]";
       DampingBand b;
-      b.from_hz = getDouble(doc, damping[i]["from_hz"], key + ".from_hz");
+      if (bool(damping[i]["from_hz"]) == bool(damping[i]["from_first_elastic"]))
+        throw inputError(doc, damping[i], key, "give either from_hz or from_first_elastic");
+      if (damping[i]["from_hz"])
+        b.from_hz = getDouble(doc, damping[i]["from_hz"], key + ".from_hz");
+      else
+        b.from_first_elastic =
+            getDouble(doc, damping[i]["from_first_elastic"], key + ".from_first_elastic");
       if (damping[i]["to_hz"]) b.to_hz = getDouble(doc, damping[i]["to_hz"], key + ".to_hz");
       b.ratio = getDouble(doc, damping[i]["ratio"], key + ".ratio");
       if (!(b.to_hz > b.from_hz)) {
@@ -374,10 +380,11 @@ void parseHierarchy(const YamlDocument& doc, const YAML::Node& h, const NurbsPat
 
 }  // namespace
 
-double ReductionConfig::dampingRatio(double f_hz) const {
+double ReductionConfig::dampingRatio(double f_hz, double f1_hz) const {
   double zeta = 0.0;
   for (const DampingBand& b : damping) {
-    if (f_hz >= b.from_hz && f_hz < b.to_hz) zeta = b.ratio;
+    const double from = b.from_first_elastic > 0.0 ? b.from_first_elastic * f1_hz : b.from_hz;
+    if (f_hz >= from && f_hz < b.to_hz) zeta = b.ratio;
   }
   return zeta;
 }

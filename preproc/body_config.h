@@ -42,9 +42,12 @@ struct MarkerConfig {
   bool interface = false;          // its control points join the Craig-Bampton interface
 };
 
-// Modal damping band: modes with from_hz <= f < to_hz get damping ratio `ratio`.
+// Modal damping band: modes with from_hz <= f < to_hz get damping ratio `ratio`; with
+// from_first_elastic = F > 0 instead, the lower limit is F times the body's lowest elastic
+// frequency f_1 (a rule that scales with the body, like runtime/bodies/quasi_static_rule.h).
 struct DampingBand {
   double from_hz = 0.0;
+  double from_first_elastic = 0.0;
   double to_hz = std::numeric_limits<double>::infinity();
   double ratio = 0.0;
 };
@@ -56,7 +59,9 @@ struct ReductionConfig {
   std::string frame_marker;       // tangent frame only
   std::vector<DampingBand> damping;
   // Damping ratio of a mode of frequency f (Hz): the last band containing f, else 0.
-  double dampingRatio(double f_hz) const;
+  // Damping ratio of a mode of frequency f_hz on a body whose lowest elastic frequency is
+  // f1_hz (the last matching band wins; 0 if none).
+  double dampingRatio(double f_hz, double f1_hz) const;
 };
 
 struct BodyConfig {

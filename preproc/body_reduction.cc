@@ -198,8 +198,9 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   sid.Ke = red.omega2.asDiagonal();
   sid.damping_ratio.resize(nq);
   sid.De = Eigen::MatrixXd::Zero(nq, nq);
+  const double f1 = nq > 0 ? sid.frequencies_hz.minCoeff() : 0.0;
   for (int i = 0; i < nq; ++i) {
-    sid.damping_ratio(i) = config.reduction.dampingRatio(sid.frequencies_hz(i));
+    sid.damping_ratio(i) = config.reduction.dampingRatio(sid.frequencies_hz(i), f1);
     sid.De(i, i) = 2.0 * sid.damping_ratio(i) * std::sqrt(red.omega2(i));
   }
   clock.done("invariants", Str() << "mass " << sid.mass << " kg");

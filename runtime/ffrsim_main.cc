@@ -123,6 +123,14 @@ int main(int argc, char** argv) {
     scene.settings.verbosity = o.verbosity;
     ffriga::ResultWriter writer(o.output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
                                 scene.doc.text, scene.flush_rows);
+    if (!scene.warnings.empty()) {
+      std::string all;
+      for (const std::string& w : scene.warnings) {
+        if (o.verbosity > 0) std::fprintf(stderr, "ffrsim: warning: %s\n", w.c_str());
+        all += (all.empty() ? "" : "\n") + w;
+      }
+      writer.setAttribute("warnings", all);
+    }
     if (scene.static_preload) {
       writer.setAttribute("static_preload_iterations", static_cast<long>(scene.preload.iterations));
       writer.setAttribute("static_preload_residual", scene.preload.residual);

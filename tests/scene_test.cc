@@ -13,6 +13,7 @@
 #include "common/refinement.h"
 #include "common/schemas.h"
 #include "runtime/system/scene.h"
+#include "runtime/bodies/quasi_static_rule.h"
 #include "surface_fixtures.h"
 
 using namespace ffriga;
@@ -334,6 +335,64 @@ TEST_CASE("scene: quasi-static coordinates in the structured and dense Jacobians
   // solution as the dense LU to within eps * condition (measured 3e-11).
   CHECK((Nd * x - b).norm() <= 1e-10 * Nd.norm() * x.norm());
   CHECK((x - ref).norm() <= 1e-8 * ref.norm());
+}
+
+TEST_CASE("scene: quasi-static rule, its keys and its bad input", "[scene]") {
+  const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
+  auto withA = [](const std::string& lines) {
+    return replace(kScene, "    sid: sphere_a.sid.h5\n", "    sid: sphere_a.sid.h5\n" + lines);
+  };
+  // Default: 4 x the lowest elastic frequency (quasi_static_rule.h), as the explicit factor.
+  Scene byDefault = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
+  Scene factor4 = buildScene(parseYamlText(withA("    quasi_static: {above_first_elastic: 4}\n"),
+                                           "scene.yaml"), {}, fakeLoader(sid));
+  const BodyModel& a = byDefault.system->body(0);
+  const double f1 = lowestElasticFrequencyHz(a.stiffnessDiagonal());
+  REQUIRE(f1 > 0.0);
+  CHECK(a.quasiStatic().cutoff_hz == 4.0 * f1);
+  CHECK(a.quasiStatic().index == factor4.system->body(0).quasiStatic().index);
+  for (int i = 0; i < a.nq(); ++i) {
+    const bool qs = std::count(a.quasiStatic().index.begin(), a.quasiStatic().index.end(), i) > 0;
+    CHECK(qs == (std::sqrt(a.stiffnessDiagonal()(i)) / (2 * M_PI) >= 4.0 * f1));
+  }
+  Scene inHz = buildScene(parseYamlText(withA("    quasi_static: {above_hz: 1.0e99}\n"),
+                                        "scene.yaml"), {}, fakeLoader(sid));
+  CHECK(inHz.system->body(0).quasiStatic().empty());
+  Scene off = buildScene(parseYamlText(withA("    quasi_static: false\n"), "scene.yaml"), {},
+                         fakeLoader(sid));
+  CHECK(off.system->body(0).quasiStatic().empty());
+  CHECK(!off.system->body(1).quasiStatic().empty());  // the other body keeps the default
+  // Bad input: file, line, key.
+  CHECK_THAT(errorOf(withA("    quasi_static: {above_hz: 1.0e6, above_first_elastic: 4}\n"), sid),
+             Catch::Contains("scene.yaml:5: key 'bodies[0].quasi_static'") &&
+                 Catch::Contains("not both"));
+  CHECK_THAT(errorOf(withA("    quasi_static: {above_hz: -1.0}\n"), sid),
+             Catch::Contains("scene.yaml:5") && Catch::Contains("above_hz"));
+  CHECK_THAT(errorOf(withA("    quasi_static: {above_first_elastic: 0.5}\n"), sid),
+             Catch::Contains("scene.yaml:5") && Catch::Contains("above_first_elastic"));
+  CHECK_THAT(errorOf(withA("    quasi_static: true\n"), sid),
+             Catch::Contains("scene.yaml:5") && Catch::Contains("quasi_static"));
+  CHECK_THAT(errorOf(withA("    quasi_static: {below_hz: 3}\n"), sid),
+             Catch::Contains("scene.yaml:5") && Catch::Contains("below_hz"));
+  // A velocity of a quasi-static coordinate (the last ones are the stiffest).
+  std::string qdot = "    qdot: [0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1.0e-3]\n";
+  CHECK_THAT(errorOf(withA(qdot), sid),
+             Catch::Contains("scene.yaml:5: key 'bodies[0].qdot'") &&
+                 Catch::Contains("quasi-static coordinate"));
+  // Warnings: damped dynamic modes below the cutoff (the test sphere's SID damps its modes
+  // with zeta 0.02; scale 0 removes that).
+  auto damping = [&](const std::string& a, const std::string& b) {
+    return replace(withA("    damping: " + a + "\n"), "    sid: sphere_b.sid.h5\n",
+                   "    sid: sphere_b.sid.h5\n    damping: " + b + "\n");
+  };
+  Scene damped = buildScene(parseYamlText(damping("{modal_damping_ratio: 0.01}", "{scale: 0}"),
+                                          "scene.yaml"), {}, fakeLoader(sid));
+  REQUIRE(damped.warnings.size() == 1);
+  CHECK_THAT(damped.warnings[0], Catch::Contains("body 'lower'") && Catch::Contains("damped") &&
+                                     Catch::Contains("zeta up to 0.01"));
+  Scene undamped = buildScene(parseYamlText(damping("{scale: 0}", "{scale: 0}"), "scene.yaml"),
+                              {}, fakeLoader(sid));
+  CHECK(undamped.warnings.empty());
 }
 
 // Timing of a paper-sized model (nq = 92 per body): run by hand with

@@ -21,7 +21,12 @@
 // steps (benchmarks/quasi_static.py sweeps the cutoff and the number of normal modes).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <Eigen/Dense>
+
+#include "runtime/bodies/quasi_static_modes.h"
 
 namespace ffriga {
 
@@ -35,6 +40,18 @@ struct QuasiStaticRule {
 // The cutoff f_cut in Hz for the stiffness diagonal k (1/s^2, elastic coordinates of Me = E);
 // +infinity for none (kNone, or no elastic coordinate with k > 0).
 double quasiStaticCutoffHz(const Eigen::VectorXd& k, const QuasiStaticRule& rule);
+
+// Warnings about modes in a band the treatment handles badly, one line each (empty if none),
+// for the body `name` with stiffness and damping diagonals k (1/s^2), c (1/s) and its
+// quasi-static coordinates qs (empty: all dynamic):
+//   * quasi-static coordinates present: dynamic modes below the cutoff that are damped
+//     (they dissipate energy the quasi-static treatment would keep); a cutoff below f_1
+//     (no elastic wave left) or above 8 x the default (dynamic modes far above it set
+//     the step size);
+//   * none: undamped modes above 8 x the default cutoff (their periods, shorter than the
+//     load by orders of magnitude, set the step: the run may take hours).
+std::vector<std::string> modeBandWarnings(const std::string& name, const Eigen::VectorXd& k,
+                                          const Eigen::VectorXd& c, const QuasiStaticModes& qs);
 
 // The body's lowest elastic frequency sqrt(min k_i) / (2 pi) over k_i > 0 (Hz; 0 if none).
 double lowestElasticFrequencyHz(const Eigen::VectorXd& k);

@@ -34,6 +34,13 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
     Handle g = group(bodies.id(), body.name());
     h5::writeAttribute(h5::Context{path_}, g.id(), "model", body.sid().model);
     h5::writeAttribute(h5::Context{path_}, g.id(), "sid_name", body.sid().name);
+    // Quasi-static coordinates (runtime/bodies/quasi_static_modes.h): their count, indices
+    // and cutoff (Hz, 0 if none); their qdot rows are zero.
+    const QuasiStaticModes& qs = body.quasiStatic();
+    h5::writeAttribute(h5::Context{path_}, g.id(), "quasi_static_modes", qs.size());
+    h5::writeAttribute(h5::Context{path_}, g.id(), "quasi_static_cutoff_hz",
+                       qs.empty() ? 0.0 : qs.cutoff_hz);
+    h5::writeAttribute(h5::Context{path_}, g.id(), "quasi_static_cutoff_unit", std::string("Hz"));
     BodySeries s;
     s.position = &create(g.id(), "position", 3, "m", "reference point r_R, inertial");
     s.orientation = &create(g.id(), "orientation", 4, "1",

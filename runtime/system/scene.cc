@@ -302,6 +302,9 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
       }
     }
     applyQuasiStaticRule(doc, B, k, *model, in.qd);
+    for (std::string& w : modeBandWarnings(model->name(), model->stiffnessDiagonal(),
+                                           model->dampingDiagonal(), model->quasiStatic()))
+      scene.warnings.push_back(std::move(w));
     sys.addBody(std::move(model));
     init.push_back(in);
   }

@@ -51,6 +51,9 @@ struct Scene {
   std::vector<Eigen::Vector3d> initial_velocity;
   bool static_preload = false;  // the scene asked for it; then `preload` says how it went
   PreloadReport preload;
+  // Warnings about the model (runtime/bodies/quasi_static_rule.h), one line each; ffrsim
+  // prints them and stores them in the result file (root attribute `warnings`).
+  std::vector<std::string> warnings;
 };
 
 // Initial pose of one body while the scene is assembled: inertial components.
