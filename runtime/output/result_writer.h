@@ -18,7 +18,7 @@
 namespace ffriga {
 
 constexpr const char* kResultFormat = "ffriga-result";
-constexpr int kResultFormatVersion = 2;
+constexpr int kResultFormatVersion = 3;
 
 class ResultWriter {
  public:
