@@ -85,6 +85,9 @@ void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd&
 }
 
 void MultibodySystem::applyConstraints(const double* y, double* ydot) {
+  // The multipliers assume inertia in every coordinate (scene.cc refuses quasi-static
+  // coordinates in scenes with joints).
+  FFRIGA_ASSERT(!hasQuasiStatic(), "joints with quasi-static coordinates");
   ConstraintRows rows;
   constraintRows(y, rows);
   Eigen::MatrixXd X;

@@ -68,8 +68,9 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
         bool any = false;
         for (int j = 0; j < n; ++j) {
           const Coordinate& c = list[j];
-          if (c.body == t.body_c) u(j) += t.bvC(c.velocity), any = true;
-          if (c.body == t.body_t) u(j) -= t.bvT(c.velocity), any = true;
+          if (c.body == t.body_c) u(j) += t.bvC(c.velocity);
+          if (c.body == t.body_t) u(j) -= t.bvT(c.velocity);
+          any = any || c.body == t.body_c || c.body == t.body_t;
         }
         if (!any || !(t.k > 0.0)) continue;  // a point on the axis has no ring weight
         columns.push_back(std::move(u));
