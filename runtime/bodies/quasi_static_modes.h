@@ -18,6 +18,9 @@
 // omega_cut (omega_cut = 2 pi f_cut), a relative lag of 1e-6 / (omega_cut T) for loads of
 // duration T, and the energy the lag dissipates is the same fraction (~ pi^2 tau / T) of
 // the energy stored in these coordinates: below 1e-8 for the impacts of Sect. 5-7.
+// CVODE's Newton iteration holds the relaxation only to its tolerance, so after every step
+// (and for every output row) the state is projected onto a_s = 0 exactly
+// (runtime/system/quasi_static_projection.cc).
 // The rest of the body's equations are untouched: the quasi-static coordinates move the
 // contact surface and carry elastic energy 1/2 k_i q_i^2, so energy is conserved to the
 // integrator's accuracy (no modal damping needed).
