@@ -25,6 +25,9 @@ import sys
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from result_checks import Checks  # noqa: E402
+
 igaprep, ffrsim, source, out, model = sys.argv[1:6]
 os.makedirs(out, exist_ok=True)
 sid = f"{out}/sphere2d_{model}.sid.h5"
@@ -33,19 +36,11 @@ subprocess.run([igaprep, "-q", f"{source}/configs/bodies/sphere2d_{model}.yaml",
                check=True)
 subprocess.run([ffrsim, "-q", f"{source}/configs/scenes/impact2d_{model}.yaml", "--sid-path", out,
                 "-o", result], check=True)
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 with h5py.File(result, "r") as f:
-    status = f.attrs["status"]
-    status = status.decode() if isinstance(status, bytes) else status
-    check(status == "completed", f"status {status}")
+    check.status_completed(f)
     with h5py.File(sid, "r") as s:
         mass = float(s["sid/mass"][()])
     t = f["time"][:]
@@ -74,4 +69,4 @@ with h5py.File(result, "r") as f:
     drift = (E.max() - E.min()) / E[0]
     check(drift <= 1e-4, f"energy drift {drift:.2e} of the initial energy (bound 1e-4)")
     print(f"steps {f.attrs['solver_steps']}, wall {float(f.attrs['wall_time_s']):.2f} s")
-sys.exit(1 if failures else 0)
+check.exit()

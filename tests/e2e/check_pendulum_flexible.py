@@ -16,12 +16,16 @@ Bounds and their reasons:
     (its elastic deflection is ~1e-5 of its length; measured ~1e-8 m), and the rod tip is
     0.1 m from the suspension to within the rod's stretch of ~1e-8 m.
 """
+import os
 import pathlib
 import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from result_checks import Checks  # noqa: E402
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 source, out = pathlib.Path(source), pathlib.Path(out)
@@ -35,20 +39,12 @@ rigid.write_text(scene.read_text().replace("    sid: rod.sid.h5\n",
 for s, r in ((scene, "pendulum_flexible.h5"), (rigid, "pendulum_frozen.h5")):
     subprocess.run([ffrsim, str(s), "-q", "--sid-path", str(out), "-o", str(out / r)],
                    check=True)
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 with h5py.File(out / "pendulum_flexible.h5", "r") as f, \
         h5py.File(out / "pendulum_frozen.h5", "r") as g:
-    status = f.attrs["status"]
-    status = status.decode() if isinstance(status, bytes) else status
-    check(status == "completed", f"status {status}")
+    check.status_completed(f)
     worst = max(float(f[f"joints/{j}/violation"][:].max()) for j in f["joints"])
     check(worst <= 1e-10, f"largest joint violation {worst:.3g} m <= 1e-10 m")
     res, force = float(f.attrs["static_preload_residual"]), float(
@@ -68,4 +64,4 @@ with h5py.File(out / "pendulum_flexible.h5", "r") as f, \
     tip = f["sensors/rod_tip/position"][:]
     stretch = float(np.abs(np.linalg.norm(tip, axis=1) - 0.1).max())
     check(stretch <= 1e-7, f"rod tip distance from the suspension: 0.1 m +- {stretch:.3g} m")
-sys.exit(1 if failures else 0)
+check.exit()

@@ -17,27 +17,23 @@ Bounds and their reasons:
     exchanges the velocities; the rods and pivots leave a share behind): its sphere moves
     at > 90 % of the left sphere's approach speed.
 """
+import os
 import subprocess
 import sys
 
 import h5py
 import numpy as np
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from result_checks import Checks  # noqa: E402
+
 ffrsim, scene, out = sys.argv[1:4]
 subprocess.run([ffrsim, scene, "-q", "-o", out], check=True)
-failures = []
-
-
-def check(ok, what):
-    print(("ok   " if ok else "FAIL ") + what)
-    if not ok:
-        failures.append(what)
+check = Checks()
 
 
 with h5py.File(out, "r") as f:
-    status = f.attrs["status"]
-    status = status.decode() if isinstance(status, bytes) else status
-    check(status == "completed", f"status {status}")
+    check.status_completed(f)
     worst = max(float(f[f"joints/{j}/violation"][:].max()) for j in f["joints"])
     check(worst <= 1e-10, f"largest joint violation {worst:.3g} m <= 1e-10 m")
     kinetic = f["energy/kinetic"][:]
@@ -66,4 +62,4 @@ with h5py.File(out, "r") as f:
           f"contact duration {1e6 * (end - begin):.2f} us against Hertz {1e6 * th:.2f} us")
     vr = float(f["sensors/sphere_right_centre/velocity"][-1, 0])
     check(vr > 0.9 * v, f"right sphere leaves at {vr:.4f} m/s of {v:.4f} m/s")
-sys.exit(1 if failures else 0)
+check.exit()
