@@ -41,7 +41,7 @@ void BodyModel::setQuasiStatic(double cutoff_hz) {
     throw InputError(Str() << "body '" << name_ << "': quasi-static modes need a SID with Me = E "
                            << "and diagonal Ke (igaprep's modal form, Eq. 13)");
   }
-  qs_ = QuasiStaticModes::select(k_, cutoff_hz);
+  qs_ = QuasiStaticModes::select(k_, sid_->Phi, cutoff_hz);
 }
 
 void BodyModel::checkDiagonal() {

@@ -6,7 +6,8 @@
 
 namespace ffriga {
 
-QuasiStaticModes QuasiStaticModes::select(const Eigen::VectorXd& k, double cutoff_hz) {
+QuasiStaticModes QuasiStaticModes::select(const Eigen::VectorXd& k, const Eigen::MatrixXd& Phi,
+                                          double cutoff_hz) {
   FFRIGA_CHECK(cutoff_hz > 0.0 && std::isfinite(cutoff_hz), "quasi-static cutoff " << cutoff_hz);
   QuasiStaticModes m;
   m.cutoff_hz = cutoff_hz;
@@ -20,6 +21,8 @@ QuasiStaticModes QuasiStaticModes::select(const Eigen::VectorXd& k, double cutof
     }
   }
   m.stiffness = Eigen::Map<const Eigen::VectorXd>(stiff.data(), static_cast<Eigen::Index>(stiff.size()));
+  m.reach.resize(m.size());
+  for (int s = 0; s < m.size(); ++s) m.reach(s) = Phi.col(m.index[s]).cwiseAbs().maxCoeff();
   return m;
 }
 

@@ -45,12 +45,15 @@ struct QuasiStaticModes {
   double tau = 0.0;           // relaxation time (s)
   std::vector<int> index;     // elastic coordinates (0 .. nq-1) treated quasi-statically
   Eigen::VectorXd stiffness;  // their k_i (1/s^2)
+  Eigen::VectorXd reach;      // their max |Phi_i| over the body's points (m per unit q_i)
 
   bool empty() const { return index.empty(); }
   int size() const { return static_cast<int>(index.size()); }
 
-  // The coordinates of stiffness diagonal k with frequency >= cutoff_hz (all k_i > 0 there).
-  static QuasiStaticModes select(const Eigen::VectorXd& k, double cutoff_hz);
+  // The coordinates of stiffness diagonal k with frequency >= cutoff_hz (all k_i > 0 there);
+  // Phi: the body's mode shapes at its control points (rows), for `reach`.
+  static QuasiStaticModes select(const Eigen::VectorXd& k, const Eigen::MatrixXd& Phi,
+                                 double cutoff_hz);
 
   // A body's rates (layout of body_model.h: spdot over its positions, accel over its
   // velocities, nrp / nrv rigid entries first): for each quasi-static coordinate i,

@@ -16,9 +16,10 @@
 // dynamic amplification under such a load is below (1 / (kDefaultFactor f_1 t_c))^2 ~ 5e-4.
 // The factor 4 keeps the global normal modes of the Sect. 5 spheres (1 .. 2.7 f_1) dynamic
 // and makes the first localised one (7.5 f_1, 1.0 MHz) and every constraint mode (>= 32 f_1)
-// quasi-static: the force peak is 146.69 N, within the elastodynamic reference's 146.7-147.0
-// N, in ~1,350 steps; with the 7.5 f_1 mode dynamic (factor 8) it is 146.85 N in ~7,500
-// steps (benchmarks/quasi_static.py sweeps the cutoff and the number of normal modes).
+// quasi-static: the force peak is 146.69 N, 0.01 % below the elastodynamic reference's
+// 146.7-147.0 N, in ~1,130 steps; with the 7.5 f_1 mode dynamic (factor 8) it is 147.02 N
+// in ~3,980 steps (benchmarks/quasi_static.py sweeps the cutoff and the number of normal
+// modes).
 #pragma once
 
 #include <string>

@@ -34,8 +34,8 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
     Handle g = group(bodies.id(), body.name());
     h5::writeAttribute(h5::Context{path_}, g.id(), "model", body.sid().model);
     h5::writeAttribute(h5::Context{path_}, g.id(), "sid_name", body.sid().name);
-    // Quasi-static coordinates (runtime/bodies/quasi_static_modes.h): their count, indices
-    // and cutoff (Hz, 0 if none); their qdot rows are zero.
+    // Quasi-static coordinates (runtime/bodies/quasi_static_modes.h): their count and
+    // cutoff (Hz, 0 if none); their qdot columns are zero.
     const QuasiStaticModes& qs = body.quasiStatic();
     h5::writeAttribute(h5::Context{path_}, g.id(), "quasi_static_modes", qs.size());
     h5::writeAttribute(h5::Context{path_}, g.id(), "quasi_static_cutoff_hz",

@@ -41,7 +41,7 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
     for (int s = 0; s < qs.size(); ++s)
       list.push_back({b, pos_offset_[b] + bodies_[b]->numRigidPositions() + qs.index[s],
                       bodies_[b]->numRigidVelocities() + qs.index[s], qs.stiffness(s),
-                      bodies_[b]->sid().Phi.col(qs.index[s]).cwiseAbs().maxCoeff()});
+                      qs.reach(s)});
   }
   const int n = static_cast<int>(list.size());
   if (n == 0) return true;

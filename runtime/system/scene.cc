@@ -421,9 +421,9 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
       sp[nr + j] = in.q(j), sv[nv + j] = in.qd(j);
       ap[nr + j] = aPos * sq, av[nv + j] = aVel * sq;
     }
-    for (int i : qs.index) {
-      const double phi = body.sid().Phi.col(i).cwiseAbs().maxCoeff();
-      if (phi > 0.0) ap[nr + i] = aPos / phi, av[nv + i] = aVel / phi;
+    for (int s = 0; s < qs.size(); ++s) {
+      const double phi = qs.reach(s);
+      if (phi > 0.0) ap[nr + qs.index[s]] = aPos / phi, av[nv + qs.index[s]] = aVel / phi;
     }
   }
   checkInitialConstraints(doc, sys, scene.y0);
