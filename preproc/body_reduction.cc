@@ -14,6 +14,7 @@
 #include "preproc/marker_points.h"
 #include "preproc/rigid_body_modes.h"
 #include "preproc/sid_invariants.h"
+#include "preproc/single_threaded_blas.h"
 
 namespace ffriga {
 
@@ -52,6 +53,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
                            << "'contact' with face and region, or 'interface: true' on a marker, "
                            << "or choose method: modal");
   }
+  const SingleThreadedBlas singleThreadedBlas;  // bitwise reproducible factorisations
   FlexibleBodySid sid;
   StageClock clock(&sid, log);
   const bool axi = config.model == ModelKind::kAxisymmetric;

@@ -28,8 +28,18 @@ Eigen::MatrixXd gemm(bool transposeA, const Eigen::MatrixXd& A, const Eigen::Mat
   const double one = 1.0, zero = 0.0;
   const int lda = static_cast<int>(std::max<Eigen::Index>(1, A.rows()));
   const int ldb = static_cast<int>(std::max<Eigen::Index>(1, B.rows()));
-  dgemm_(transposeA ? "T" : "N", "N", &m, &n, &k, &one, A.data(), &lda, B.data(), &ldb, &zero,
-         C.data(), &m, 1, 1);
+  // Column blocks of a fixed width, one dgemm each, shared between the OpenMP threads: a
+  // column of C is computed the same way whatever the number of threads.
+  const int width = 64;
+  const int blocks = (n + width - 1) / width;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int b = 0; b < blocks; ++b) {
+    const int j = b * width;
+    const int nb = std::min(width, n - j);
+    dgemm_(transposeA ? "T" : "N", "N", &m, &nb, &k, &one, A.data(), &lda,
+           B.data() + static_cast<std::size_t>(j) * ldb, &ldb, &zero,
+           C.data() + static_cast<std::size_t>(j) * m, &m, 1, 1);
+  }
   return C;
 }
 

@@ -1,12 +1,12 @@
 #include "preproc/eigen_solver.h"
 
-#include <dlfcn.h>
-
 #include <algorithm>
+#include <cstdint>
 #include <numeric>
 #include <vector>
 
 #include "common/error.h"
+#include "preproc/single_threaded_blas.h"
 #include "preproc/sparse_cholesky.h"
 
 extern "C" {
@@ -79,31 +79,24 @@ std::string dseupdMessage(int info) {
   }
 }
 
-// ARPACK applies the operator one vector at a time: CHOLMOD's single-RHS solves are
-// BLAS-2 calls too small to share between threads, and a multithreaded BLAS (OpenBLAS)
-// spends more time synchronising than computing (measured 3x slower on 2 cores). While in
-// scope, a multithreaded OpenBLAS, if it is the BLAS in use, runs on one thread; other BLAS
-// libraries are left alone (the symbols are looked up at run time).
-class SingleThreadedBlas {
- public:
-  SingleThreadedBlas() {
-    set_ = reinterpret_cast<void (*)(int)>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
-    auto get = reinterpret_cast<int (*)()>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-    if (set_ && get) {
-      previous_ = get();
-      set_(1);
-    }
-  }
-  ~SingleThreadedBlas() {
-    if (set_ && previous_ > 0) set_(previous_);
-  }
-  SingleThreadedBlas(const SingleThreadedBlas&) = delete;
-  SingleThreadedBlas& operator=(const SingleThreadedBlas&) = delete;
 
- private:
-  void (*set_)(int) = nullptr;
-  int previous_ = 0;
-};
+// ARPACK's own random start (info = 0) continues one LAPACK random stream through every call
+// of the process, so a result would depend on what was solved before. A fixed start vector
+// instead: components in [-1, 1) from SplitMix64 with a fixed seed (integer arithmetic, the
+// same bits on every platform); ARPACK applies OP to it first (range of OP for bmat = 'G').
+std::vector<double> startVector(int n) {
+  std::vector<double> v(n);
+  std::uint64_t state = 0x9E3779B97F4A7C15ULL;
+  for (int i = 0; i < n; ++i) {
+    state += 0x9E3779B97F4A7C15ULL;
+    std::uint64_t z = state;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    v[i] = static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;  // 53 bits: [0, 2) - 1
+  }
+  return v;
+}
 
 }  // namespace
 
@@ -138,18 +131,18 @@ EigenResult solveEigenproblem(const SparseCholesky& chol, const SparseMatrix& M,
   const int nev = o.count;
   const int ncv = std::min(n, std::max(2 * nev + 1, nev + 20));
   const int lworkl = ncv * (ncv + 8);
-  std::vector<double> resid(n, 0.0), v(static_cast<std::size_t>(n) * ncv), workd(3 * n),
+  std::vector<double> resid = startVector(n), v(static_cast<std::size_t>(n) * ncv), workd(3 * n),
       workl(lworkl);
   int iparam[11] = {0}, ipntr[11] = {0};
   iparam[0] = 1;  // exact shifts
   iparam[2] = o.max_iterations;
   iparam[6] = 3;  // shift-invert
-  int ido = 0, info = 0;
+  int ido = 0, info = 1;  // 1: start from resid
   const char bmat = 'G';
   const char which[] = "LM";
   EigenResult result;
   std::vector<double> tmp(n);
-  const SingleThreadedBlas singleThreaded;
+  const SingleThreadedBlas singleThreaded;  // the operator is applied one vector at a time
   while (true) {
     dsaupd_(&ido, &bmat, &n, which, &nev, &o.tolerance, resid.data(), &ncv, v.data(), &n, iparam,
             ipntr, workd.data(), workl.data(), &lworkl, &info, 1, 2);

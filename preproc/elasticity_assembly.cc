@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <omp.h>
+
 #include "common/error.h"
 #include "common/gauss_legendre.h"
 
@@ -43,25 +45,169 @@ SparseMatrix buildPattern(const std::vector<std::vector<int>>& adjacency, int co
                                         inner.data(), values.data());
 }
 
-// Adds v at (row, col), row <= col, of a compressed pattern (thread-safe).
-inline void atomicAdd(SparseMatrix& A, int row, int col, double v) {
+// Adds v at (row, col), row <= col, of a compressed pattern.
+inline void addAt(SparseMatrix& A, int row, int col, double v) {
   const int* inner = A.innerIndexPtr();
   const int begin = A.outerIndexPtr()[col];
   const int end = A.outerIndexPtr()[col + 1];
   const int pos = static_cast<int>(std::lower_bound(inner + begin, inner + end, row) - inner);
   FFRIGA_ASSERT(pos < end && inner[pos] == row, "entry (" << row << ", " << col << ") missing");
-  double& target = A.valuePtr()[pos];
-#pragma omp atomic
-  target += v;
+  A.valuePtr()[pos] += v;
 }
 
-struct ElementWork {
-  PatchBasis basis;
-  std::vector<int> functions;
-  Eigen::MatrixXd Ke, Me;  // (components * nb)^2 and nb^2
-  Eigen::MatrixXd G[3];    // per component: Gauss points x nb, scaled physical derivatives
-  Eigen::MatrixXd N;       // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
+// What the quadrature of one element leaves for the scatter.
+struct ElementMatrices {
+  std::vector<int> functions;  // control points of the element's basis functions
+  Eigen::MatrixXd Ke, Me;      // (components * nb)^2 and nb^2, local order (j, c) -> j * s + c
+  bool singular = false;       // det J = 0 (or not finite) at a Gauss point
 };
+
+// Scratch space of one thread.
+struct QuadratureWork {
+  PatchBasis basis;
+  Eigen::MatrixXd G[3];  // per component: Gauss points x nb, scaled physical derivatives
+  Eigen::MatrixXd N;     // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
+};
+
+struct QuadratureSetup {
+  int d = 0, s = 0, ng = 0;
+  std::array<QuadratureRule, 3> rules;
+  double lambda = 0.0, mu = 0.0;
+};
+
+// Phase 1 of an element: the scaled values and physical gradients at its Gauss points.
+void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
+                      const QuadratureSetup& q, int e, QuadratureWork& w, ElementMatrices& out) {
+  const int d = q.d, s = q.s, ng = q.ng;
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const ElementBox box = space.element(e);
+  int nb = -1;
+  for (int g = 0; g < ng; ++g) {
+    double xi[3] = {0, 0, 0};
+    double weight = 1.0;
+    int rest = g;
+    for (int a = 0; a < d; ++a) {
+      const int i = rest % model.gauss_points[a];
+      rest /= model.gauss_points[a];
+      const double h = 0.5 * (box.upper[a] - box.lower[a]);
+      xi[a] = box.lower[a] + h * (q.rules[a].points[i] + 1.0);
+      weight *= h * q.rules[a].weights[i];
+    }
+    space.elementBasis(e, xi, 1, w.basis);
+    if (nb < 0) {
+      nb = static_cast<int>(w.basis.index.size());
+      out.functions = w.basis.index;
+      for (int c = 0; c < 3; ++c) w.G[c].setZero(ng, nb);
+      w.N.setZero(ng, nb);
+    }
+    const Eigen::MatrixXd& R = w.basis.table;  // rows: value, d/dxi_a
+    Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
+    if (s == 2) J(2, 2) = 1.0;  // 2D: the 2 x 2 map embedded
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int j = 0; j < nb; ++j) {
+      const int k = out.functions[j];
+      for (int c = 0; c < s; ++c) {
+        x(c) += R(0, j) * P(k, c);
+        for (int a = 0; a < d; ++a) J(c, a) += R(1 + a, j) * P(k, c);
+      }
+    }
+    const double det = J.determinant();
+    if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
+      out.singular = true;
+      return;
+    }
+    const Eigen::Matrix3d Jinv = J.inverse();
+    double dV = std::abs(det) * weight;
+    if (model.axisymmetric) dV *= kTwoPi * x(0);
+    const double sq = std::sqrt(dV);
+    // Physical gradients: grad R = J^{-T} dR/dxi.
+    for (int c = 0; c < s; ++c) {
+      for (int j = 0; j < nb; ++j) {
+        double v = 0.0;
+        for (int a = 0; a < d; ++a) v += Jinv(a, c) * R(1 + a, j);
+        w.G[c](g, j) = sq * v;
+      }
+    }
+    w.N.row(g) = std::sqrt(model.density * dV) * R.row(0);
+    // Axisymmetric hoop strain u_r / r: stored as a third "derivative" row block.
+    if (model.axisymmetric) w.G[2].row(g) = (sq / x(0)) * R.row(0);
+  }
+}
+
+// Phase 2: element stiffness (solid or axisymmetric strains) and scalar mass matrices.
+void elementMatrices(const ElasticityModel& model, const QuadratureSetup& q, QuadratureWork& w,
+                     ElementMatrices& out) {
+  const int s = q.s;
+  const int nb = static_cast<int>(out.functions.size());
+  const double lambda = q.lambda, mu = q.mu;
+  out.Ke.setZero(s * nb, s * nb);
+  if (!model.axisymmetric) {
+    Eigen::MatrixXd H[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) H[i][j].noalias() = w.G[i].transpose() * w.G[j];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < i; ++j) H[i][j] = H[j][i].transpose();
+    const Eigen::MatrixXd L = H[0][0] + H[1][1] + H[2][2];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        Eigen::MatrixXd block = lambda * H[i][j] + mu * H[j][i];
+        if (i == j) block += mu * L;
+        for (int a = 0; a < nb; ++a)
+          for (int b = 0; b < nb; ++b) out.Ke(a * 3 + i, b * 3 + j) = block(a, b);
+      }
+    }
+  } else {
+    // Strain rows for u_r (c = 0) and u_y (c = 1) of function a:
+    //   e_rr = d_r R u_r, e_yy = d_y R u_y, e_tt = R / r u_r, g_ry = d_y R u_r + d_r R u_y.
+    const Eigen::MatrixXd& Gr = w.G[0];
+    const Eigen::MatrixXd& Gy = w.G[1];
+    const Eigen::MatrixXd& Gt = w.G[2];
+    const Eigen::MatrixXd rr = Gr.transpose() * Gr, yy = Gy.transpose() * Gy,
+                          tt = Gt.transpose() * Gt, ry = Gr.transpose() * Gy,
+                          rt = Gr.transpose() * Gt, yt = Gy.transpose() * Gt;
+    const double l2m = lambda + 2.0 * mu;
+    for (int a = 0; a < nb; ++a) {
+      for (int b = 0; b < nb; ++b) {
+        // (u_r, u_r): e_rr e_rr, e_tt e_tt, e_rr e_tt cross terms, shear g_ry g_ry.
+        out.Ke(2 * a, 2 * b) =
+            l2m * (rr(a, b) + tt(a, b)) + lambda * (rt(a, b) + rt(b, a)) + mu * yy(a, b);
+        // (u_r of a, u_y of b)
+        out.Ke(2 * a, 2 * b + 1) = lambda * (ry(a, b) + yt(b, a)) + mu * ry(b, a);
+        out.Ke(2 * a + 1, 2 * b) = lambda * (ry(b, a) + yt(a, b)) + mu * ry(a, b);
+        out.Ke(2 * a + 1, 2 * b + 1) = l2m * yy(a, b) + mu * rr(a, b);
+      }
+    }
+  }
+  out.Me.noalias() = w.N.transpose() * w.N;
+}
+
+// Phase 3: adds the element's matrices into the upper triangles of K and Ms, only the
+// columns whose node lies in [node_begin, node_end): each thread owns a range of columns,
+// and every entry receives its element contributions in element order, whatever the number
+// of threads (bitwise reproducible sums).
+void scatterOwnedColumns(const ElementMatrices& em, const DofMap& dofs, int s, int node_begin,
+                         int node_end, ElasticSystem& sys) {
+  const int nb = static_cast<int>(em.functions.size());
+  for (int b = 0; b < nb; ++b) {
+    const int kb = em.functions[b];
+    const int nbd = dofs.node(kb);
+    if (nbd < node_begin || nbd >= node_end) continue;
+    for (int a = 0; a < nb; ++a) {
+      const int ka = em.functions[a];
+      const int nad = dofs.node(ka);
+      if (nad <= nbd) addAt(sys.Ms, nad, nbd, em.Me(a, b));
+      for (int cb = 0; cb < s; ++cb) {
+        const int col = dofs.dof(kb, cb);
+        if (col < 0) continue;
+        for (int ca = 0; ca < s; ++ca) {
+          const int row = dofs.dof(ka, ca);
+          if (row < 0 || row > col) continue;
+          addAt(sys.K, row, col, em.Ke(a * s + ca, b * s + cb));
+        }
+      }
+    }
+  }
+}
 
 }  // namespace
 
@@ -78,8 +224,7 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
   FFRIGA_CHECK(d == s && (s == 2 || s == 3),
                "elasticity needs d = s = 2 or 3, found d = " << d << ", s = " << s);
   FFRIGA_CHECK(!model.axisymmetric || s == 2, "axisymmetric models are 2D");
-  const Eigen::MatrixXd& P = space.controlPoints();
-  const double E = model.youngs_modulus, nu = model.poisson_ratio, rho = model.density;
+  const double E = model.youngs_modulus, nu = model.poisson_ratio;
   const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
   const double mu = E / (2.0 * (1.0 + nu));
 
@@ -142,128 +287,40 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
       rules[a] = gaussLegendre(model.gauss_points[a]);
       ng *= model.gauss_points[a];
     }
+    QuadratureSetup setup;
+    setup.d = d;
+    setup.s = s;
+    setup.ng = ng;
+    setup.rules = rules;
+    setup.lambda = lambda;
+    setup.mu = mu;
+    // Elements in chunks of a fixed size (independent of the thread count): the element
+    // matrices of a chunk are computed in parallel, then scattered by column owners.
+    // 256 elements of degree 2 in 3D hold 15 MB of element matrices (84 MB for degree 3).
+    const int chunk = 256;
+    std::vector<ElementMatrices> em(static_cast<std::size_t>(std::min(chunk, std::max(ne, 1))));
     int singular = -1;
+    for (int e0 = 0; e0 < ne && singular < 0; e0 += chunk) {
+      const int count = std::min(chunk, ne - e0);
 #pragma omp parallel
-    {
-      ElementWork w;
-#pragma omp for schedule(dynamic, 16)
-      for (int e = 0; e < ne; ++e) {
-        const ElementBox box = space.element(e);
-        int nb = -1;
-        for (int g = 0; g < ng; ++g) {
-          double xi[3] = {0, 0, 0};
-          double weight = 1.0;
-          int rest = g;
-          for (int a = 0; a < d; ++a) {
-            const int i = rest % model.gauss_points[a];
-            rest /= model.gauss_points[a];
-            const double h = 0.5 * (box.upper[a] - box.lower[a]);
-            xi[a] = box.lower[a] + h * (rules[a].points[i] + 1.0);
-            weight *= h * rules[a].weights[i];
-          }
-          space.elementBasis(e, xi, 1, w.basis);
-          if (nb < 0) {
-            nb = static_cast<int>(w.basis.index.size());
-            w.functions = w.basis.index;
-            for (int c = 0; c < s; ++c) w.G[c].setZero(ng, nb);
-            w.N.setZero(ng, nb);
-          }
-          const Eigen::MatrixXd& R = w.basis.table;  // rows: value, d/dxi_a
-          Eigen::Matrix3d J = Eigen::Matrix3d::Zero();
-          if (s == 2) J(2, 2) = 1.0;  // 2D: the 2 x 2 map embedded
-          Eigen::Vector3d x = Eigen::Vector3d::Zero();
-          for (int j = 0; j < nb; ++j) {
-            const int k = w.functions[j];
-            for (int c = 0; c < s; ++c) {
-              x(c) += R(0, j) * P(k, c);
-              for (int a = 0; a < d; ++a) J(c, a) += R(1 + a, j) * P(k, c);
-            }
-          }
-          const double det = J.determinant();
-          if (!(std::abs(det) > 0.0) || !std::isfinite(det)) {
-#pragma omp critical
-            singular = e;
-            continue;
-          }
-          const Eigen::Matrix3d Jinv = J.inverse();
-          double dV = std::abs(det) * weight;
-          if (model.axisymmetric) dV *= kTwoPi * x(0);
-          const double sq = std::sqrt(dV);
-          // Physical gradients: grad R = J^{-T} dR/dxi.
-          for (int c = 0; c < s; ++c) {
-            for (int j = 0; j < nb; ++j) {
-              double v = 0.0;
-              for (int a = 0; a < d; ++a) v += Jinv(a, c) * R(1 + a, j);
-              w.G[c](g, j) = sq * v;
-            }
-          }
-          w.N.row(g) = std::sqrt(rho * dV) * R.row(0);
-          if (model.axisymmetric) {
-            // Hoop strain u_r / r: stored as a third "derivative" row block below.
-            if (g == 0) w.G[2].setZero(ng, nb);
-            w.G[2].row(g) = (sq / x(0)) * R.row(0);
-          }
+      {
+        QuadratureWork w;
+#pragma omp for schedule(dynamic, 8)
+        for (int i = 0; i < count; ++i) {
+          em[i].singular = false;
+          gaussPointTables(space, model, setup, e0 + i, w, em[i]);
+          if (!em[i].singular && !em[i].functions.empty()) elementMatrices(model, setup, w, em[i]);
         }
-        if (nb < 0) continue;
-        // Element matrices, local ordering (function j, component c) -> j * s + c.
-        w.Ke.setZero(s * nb, s * nb);
-        if (!model.axisymmetric) {
-          Eigen::MatrixXd H[3][3];
-          for (int i = 0; i < 3; ++i)
-            for (int j = i; j < 3; ++j) H[i][j].noalias() = w.G[i].transpose() * w.G[j];
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < i; ++j) H[i][j] = H[j][i].transpose();
-          const Eigen::MatrixXd L = H[0][0] + H[1][1] + H[2][2];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) {
-              Eigen::MatrixXd block = lambda * H[i][j] + mu * H[j][i];
-              if (i == j) block += mu * L;
-              for (int a = 0; a < nb; ++a)
-                for (int b = 0; b < nb; ++b) w.Ke(a * 3 + i, b * 3 + j) = block(a, b);
-            }
-          }
-        } else {
-          // Strain rows for u_r (c = 0) and u_y (c = 1) of function a:
-          //   e_rr = d_r R u_r, e_yy = d_y R u_y, e_tt = R / r u_r, g_ry = d_y R u_r + d_r R u_y.
-          const Eigen::MatrixXd& Gr = w.G[0];
-          const Eigen::MatrixXd& Gy = w.G[1];
-          const Eigen::MatrixXd& Gt = w.G[2];
-          const Eigen::MatrixXd rr = Gr.transpose() * Gr, yy = Gy.transpose() * Gy,
-                                tt = Gt.transpose() * Gt, ry = Gr.transpose() * Gy,
-                                rt = Gr.transpose() * Gt, yt = Gy.transpose() * Gt;
-          const double l2m = lambda + 2.0 * mu;
-          for (int a = 0; a < nb; ++a) {
-            for (int b = 0; b < nb; ++b) {
-              // (u_r, u_r): e_rr e_rr, e_tt e_tt, e_rr e_tt cross terms, shear g_ry g_ry.
-              w.Ke(2 * a, 2 * b) =
-                  l2m * (rr(a, b) + tt(a, b)) + lambda * (rt(a, b) + rt(b, a)) + mu * yy(a, b);
-              // (u_r of a, u_y of b)
-              w.Ke(2 * a, 2 * b + 1) = lambda * (ry(a, b) + yt(b, a)) + mu * ry(b, a);
-              w.Ke(2 * a + 1, 2 * b) = lambda * (ry(b, a) + yt(a, b)) + mu * ry(a, b);
-              w.Ke(2 * a + 1, 2 * b + 1) = l2m * yy(a, b) + mu * rr(a, b);
-            }
-          }
-        }
-        w.Me.noalias() = w.N.transpose() * w.N;
-        // Scatter into the upper triangles.
-        for (int b = 0; b < nb; ++b) {
-          const int kb = w.functions[b];
-          const int nbd = dofs.node(kb);
-          for (int a = 0; a < nb; ++a) {
-            const int ka = w.functions[a];
-            const int nad = dofs.node(ka);
-            if (nad <= nbd) atomicAdd(sys.Ms, nad, nbd, w.Me(a, b));
-            for (int cb = 0; cb < s; ++cb) {
-              const int col = dofs.dof(kb, cb);
-              if (col < 0) continue;
-              for (int ca = 0; ca < s; ++ca) {
-                const int row = dofs.dof(ka, ca);
-                if (row < 0 || row > col) continue;
-                atomicAdd(sys.K, row, col, w.Ke(a * s + ca, b * s + cb));
-              }
-            }
-          }
-        }
+      }
+      for (int i = 0; i < count && singular < 0; ++i)
+        if (em[i].singular) singular = e0 + i;
+      if (singular >= 0) break;
+#pragma omp parallel
+      {
+        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+        const int begin = static_cast<int>(static_cast<long long>(ncp) * t / nt);
+        const int end = static_cast<int>(static_cast<long long>(ncp) * (t + 1) / nt);
+        for (int i = 0; i < count; ++i) scatterOwnedColumns(em[i], dofs, s, begin, end, sys);
       }
     }
     if (singular >= 0) {
@@ -280,7 +337,7 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
         for (int c = 0; c < s; ++c) {
           const int row = dofs.dof(a, c), col = dofs.dof(b, c);
           if (row < 0 || col < 0) continue;
-          atomicAdd(sys.M, std::min(row, col), std::max(row, col), it.value());
+          addAt(sys.M, std::min(row, col), std::max(row, col), it.value());
         }
       }
     }

@@ -21,7 +21,8 @@
 // ncp x ncp, upper triangle, with coincident control points lumped onto their node (the
 // smallest index of the group): rows and columns of the other points are empty; a sum
 // sum_ab Ms(a, b) f_a g_b is exact for control-point data f, g that agree on tied points.
-// Assembly runs over elements in parallel (OpenMP) and adds into a precomputed pattern.
+// Assembly runs over elements in parallel (OpenMP) and adds into a precomputed pattern,
+// every entry in element order: the matrices are the same bits for any thread count.
 #pragma once
 
 #include <array>

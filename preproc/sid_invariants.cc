@@ -1,6 +1,7 @@
 #include "preproc/sid_invariants.h"
 
 #include <cmath>
+#include <vector>
 
 #include "common/error.h"
 #include "common/gauss_legendre.h"
@@ -39,17 +40,22 @@ MassProperties massProperties(const SplineSpace& space, double rho, bool axi,
     ng *= npts[a];
   }
   const Eigen::MatrixXd& P = space.controlPoints();
-  double m = 0.0;
-  Eigen::Vector3d mc = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  // Per-element sums in parallel, then added in element order (the same bits for any
+  // thread count).
+  struct ElementMoments {
+    double m = 0.0;
+    Eigen::Vector3d mc = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  };
+  std::vector<ElementMoments> moments(space.numElements());
 #pragma omp parallel
   {
-    double tm = 0.0;
-    Eigen::Vector3d tmc = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d tS = Eigen::Matrix3d::Zero();
     PatchBasis basis;
 #pragma omp for schedule(dynamic, 16)
     for (int e = 0; e < space.numElements(); ++e) {
+      double& tm = moments[e].m;
+      Eigen::Vector3d& tmc = moments[e].mc;
+      Eigen::Matrix3d& tS = moments[e].S;
       const ElementBox box = space.element(e);
       for (int g = 0; g < ng; ++g) {
         double xi[3] = {0, 0, 0}, w = 1.0;
@@ -84,12 +90,14 @@ MassProperties massProperties(const SplineSpace& space, double rho, bool axi,
         tmc += dm * x;
       }
     }
-#pragma omp critical
-    {
-      m += tm;
-      mc += tmc;
-      S += tS;
-    }
+  }
+  double m = 0.0;
+  Eigen::Vector3d mc = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();
+  for (const ElementMoments& em : moments) {
+    m += em.m;
+    mc += em.mc;
+    S += em.S;
   }
   MassProperties p;
   p.mass = m;

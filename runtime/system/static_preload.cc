@@ -49,7 +49,7 @@ PreloadReport staticPreload(MultibodySystem& sys, Eigen::VectorXd& y) {
     for (int i = 0; i < n; ++i) f = std::max(f, std::abs(ix.k[i] * state(ix.q[i])));
     return f;
   };
-  Eigen::VectorXd F, Ft;
+  Eigen::VectorXd F, Ft, before;
   residual(y, F);
   Eigen::PartialPivLU<Eigen::MatrixXd> lu;
   bool haveJacobian = false;
@@ -59,7 +59,18 @@ PreloadReport staticPreload(MultibodySystem& sys, Eigen::VectorXd& y) {
     report.iterations = iter;
     report.residual = r;
     report.elastic_force = scale;
-    if (r <= 1e-10 * scale || r == 0.0) return report;
+    if (r == 0.0) return report;
+    // Converged at 1e-10 of the elastic forces; then polished while Newton still gains a
+    // factor 10 per step, down to round-off: what is left of the residual becomes rigid
+    // accelerations and joint reactions (1e-10 left them at a few 1e-8 of the weight, and
+    // the last bits depended on the BLAS kernels of the machine).
+    if (r <= 1e-10 * scale && (r > 0.1 * previous || r <= 1e-15 * scale)) {
+      if (r > previous) {  // the last polishing step lost: back to the state before it
+        y = before;
+        report.residual = previous;
+      }
+      return report;
+    }
     if (!haveJacobian || r > 0.1 * previous) {
       // dF/dq by forward differences; increments relative to the static deflection scale
       // |F| / k (the response of a mode to its own residual) or to |q|.
@@ -76,6 +87,7 @@ PreloadReport staticPreload(MultibodySystem& sys, Eigen::VectorXd& y) {
       haveJacobian = true;
     }
     previous = r;
+    before = y;
     const Eigen::VectorXd dq = -lu.solve(F);
     for (int i = 0; i < n; ++i) y(ix.q[i]) += dq(i);
     residual(y, F);

@@ -1,0 +1,107 @@
+"""Same input, same bits (issue 13): igaprep run twice and with 1 and 2 OpenMP threads gives
+SID files whose datasets are equal bit for bit, and so does ffrsim on the 2D impact and on a
+short 3D impact (whose contact loop runs in parallel: 3D contact sides have more than 128
+collocation points). Attributes are compared too, except the measured times.
+
+usage: check_reproducible.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
+"""
+import os
+import subprocess
+import sys
+
+import h5py
+import numpy as np
+
+from result_checks import Checks
+
+igaprep, ffrsim, source, out = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+check = Checks()
+
+# Attributes that are measurements of the machine, not results.
+TIMING = ("wall_time_s", "cpu_time_s", "preprocessing_time_s", "peak_memory")  # and stage times
+
+
+def is_timing(path, name):
+    return (any(t in name for t in TIMING) or name.endswith("_wall_s") or "stage_times" in path)
+
+
+def contents(path):
+    """Every dataset's bytes and every non-timing attribute, by HDF5 path."""
+    items = {}
+    with h5py.File(path, "r") as f:
+        def visit(name, obj):
+            for k, v in obj.attrs.items():
+                if not is_timing(name, k):
+                    items[f"{name}@{k}"] = np.asarray(v).tobytes()
+            if isinstance(obj, h5py.Dataset):
+                items[name] = (obj.dtype.str, obj.shape, np.asarray(obj[()]).tobytes())
+        visit("/", f)
+        f.visititems(visit)
+    return items
+
+
+def same_bits(a, b, what):
+    ca, cb = contents(a), contents(b)
+    differ = sorted(k for k in set(ca) | set(cb) if ca.get(k) != cb.get(k))
+    check(not differ and len(ca) > 0,
+          f"{what}: {len(ca)} datasets and attributes equal bit for bit"
+          + (f"; differ: {', '.join(differ[:8])}" if differ else ""))
+
+
+def run(cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        print(r.stdout + r.stderr)
+        check(False, f"{' '.join(cmd)} exited with {r.returncode}")
+        check.exit()
+
+
+# igaprep: an axisymmetric body (2D assembly), the rod (3D, markers) and the 3D sphere
+# (CHOLMOD supernodal, hundreds of constraint modes, degenerate eigenspaces of the sphere).
+for stem, twice in (("sphere2d_h3", True), ("rod", True), ("sphere3d_coarse", False)):
+    body = os.path.join(source, "configs", "bodies", stem + ".yaml")
+    runs = [("2", "a"), ("1", "a")] + ([("2", "b")] if twice else [])
+    for threads, tag in runs:
+        run([igaprep, "-q", "--threads", threads, body, "-o",
+             os.path.join(out, f"{stem}_{threads}{tag}.sid.h5")])
+    same_bits(os.path.join(out, f"{stem}_2a.sid.h5"), os.path.join(out, f"{stem}_1a.sid.h5"),
+              f"igaprep {stem}, 2 threads against 1")
+    if twice:
+        same_bits(os.path.join(out, f"{stem}_2a.sid.h5"), os.path.join(out, f"{stem}_2b.sid.h5"),
+                  f"igaprep {stem}, two runs on 2 threads")
+
+# ffrsim: the scenes find their SID by name in the output folder.
+for stem in ("sphere2d_h3", "sphere3d_coarse"):
+    os.replace(os.path.join(out, f"{stem}_2a.sid.h5"), os.path.join(out, f"{stem}.sid.h5"))
+
+
+def scene_copy(name, end_time):
+    """The scene with a shorter end time (the 3D run: 10 us of contact, a few seconds)."""
+    with open(os.path.join(source, "configs", "scenes", name + ".yaml")) as f:
+        text = f.read()
+    if end_time:
+        assert "end_time: 1.0e-4" in text, name
+        text = text.replace("end_time: 1.0e-4", f"end_time: {end_time}")
+    path = os.path.join(out, name + ".yaml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+for scene, end_time, twice in (("impact2d_h3", None, True), ("impact3d_coarse", "1.0e-5", False)):
+    path = scene_copy(scene, end_time)
+    runs = [("2", "a"), ("1", "a")] + ([("2", "b")] if twice else [])
+    for threads, tag in runs:
+        run([ffrsim, "-q", "--threads", threads, path, "--sid-path", out, "-o",
+             os.path.join(out, f"{scene}_{threads}{tag}.h5")])
+    a = os.path.join(out, f"{scene}_2a.h5")
+    with h5py.File(a, "r") as f:
+        rows = f["time"].shape[0]
+        peak = float(f.attrs["max_contact_force_N"])
+    check(rows > 10 and peak > 1.0, f"ffrsim {scene}: {rows} rows, contact force up to {peak:.3f} N")
+    same_bits(a, os.path.join(out, f"{scene}_1a.h5"), f"ffrsim {scene}, 2 threads against 1")
+    if twice:
+        same_bits(a, os.path.join(out, f"{scene}_2b.h5"), f"ffrsim {scene}, two runs on 2 threads")
+
+check.exit()
