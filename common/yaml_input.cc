@@ -1,11 +1,64 @@
 #include "common/yaml_input.h"
 
+#include <cctype>
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 namespace ffriga {
+
+namespace {
+
+// A plain (unquoted) scalar that YAML or strtod reads as a number that is not finite:
+// .inf, -.Inf, .nan, .NaN, ..., or a literal beyond the range of double (1e999).
+bool isNonFiniteNumber(const YAML::Node& node) {
+  if (!node.IsScalar() || node.Tag() != "?") return false;
+  std::string t = node.Scalar();
+  if (!t.empty() && (t[0] == '+' || t[0] == '-')) t = t.substr(1);
+  for (const char* special : {".inf", ".Inf", ".INF", ".nan", ".NaN", ".NAN"})
+    if (t == special) return true;
+  const char* c = node.Scalar().c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(c, &end);
+  const bool number = end != c && *end == '\0' && std::isdigit(static_cast<unsigned char>(t[0]));
+  return number && (!std::isfinite(v) || (errno == ERANGE && std::abs(v) > 1.0));
+}
+
+std::string childKey(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+// Walks the whole tree once: duplicate keys of a mapping (yaml-cpp keeps both and a lookup
+// sees one of them: the other would be ignored without a word) and numbers that are not
+// finite are errors, naming the key path and the lines.
+void checkTree(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  if (node.IsMap()) {
+    std::map<std::string, int> seen;  // key -> its line
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string name = it->first.IsScalar() ? it->first.Scalar() : describeNode(it->first);
+      const auto [prev, inserted] = seen.emplace(name, yamlLine(it->first));
+      if (!inserted) {
+        throw inputError(doc, it->first, childKey(key, name),
+                         Str() << "duplicate key: also given on line " << prev->second
+                               << " (each key may appear once in a mapping)");
+      }
+      checkTree(doc, it->second, childKey(key, name));
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      checkTree(doc, node[i], Str() << key << "[" << i << "]");
+  } else if (isNonFiniteNumber(node)) {
+    throw inputError(doc, node, key,
+                     Str() << "expected a finite number, found " << node.Scalar());
+  }
+}
+
+}  // namespace
 
 YamlDocument parseYamlText(const std::string& text, const std::string& path) {
   YamlDocument doc;
@@ -19,6 +72,7 @@ YamlDocument parseYamlText(const std::string& text, const std::string& path) {
   if (!doc.root || doc.root.IsNull()) {
     throw InputError(Str() << path << ":1: the file is empty, expected a YAML mapping");
   }
+  checkTree(doc, doc.root, "");
   return doc;
 }
 
@@ -70,6 +124,9 @@ double getDouble(const YamlDocument& doc, const YAML::Node& node, const std::str
   double v = 0.0;
   if (!node.IsScalar() || !YAML::convert<double>::decode(node, v)) {
     throw inputError(doc, node, key, Str() << "expected a number, found " << describeNode(node));
+  }
+  if (!std::isfinite(v)) {
+    throw inputError(doc, node, key, Str() << "expected a finite number, found " << node.Scalar());
   }
   return v;
 }

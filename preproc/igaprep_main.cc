@@ -19,6 +19,7 @@
 #include <iostream>
 
 #include "common/cli.h"
+#include "common/output_path.h"
 #include "common/sid_file.h"
 #include "common/version.h"
 #include "preproc/body_config.h"
@@ -185,6 +186,10 @@ int main(int argc, char** argv) {
                                              << o.positional.size() << " arguments (see --help)");
     }
     ffriga::applyThreads(o.threads);
+    if (!o.output.empty()) {  // before any work
+      ffriga::checkOutputWritable(o.output, "-o");
+      ffriga::refuseInputAsOutput(o.output, "-o", o.positional[0], "the body file");
+    }
     const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0]);
     if (o.output.empty()) {
       printGeometry(config, ffriga::refinedPatch(config), o.verbosity);

@@ -4,12 +4,14 @@
 //
 // Loads the scene (schemas/scene.schema.json) and the bodies' SID files, integrates the
 // equations of motion (paper Eq. 1) with penalty contact (Sect. 4) by CVODE's BDF method and
-// writes the result file (schemas/result_format.md) as the run goes. Ctrl-C stops the run
-// between steps and leaves a complete, readable file whose `status` says so.
+// writes the result file (schemas/result_format.md) as the run goes. Ctrl-C, SIGTERM and
+// SIGHUP stop the run between steps and leave a complete, readable file whose `status`
+// says so.
 #include <cstdio>
 #include <iostream>
 
 #include "common/cli.h"
+#include "common/output_path.h"
 #include "common/version.h"
 #include "runtime/contact/hertz_reference.h"
 #include "runtime/output/result_writer.h"
@@ -38,7 +40,8 @@ options:
   -h, --help         show this help and exit
   --version          show the version and exit
 
-Scene files: schemas/scene.schema.json. Ctrl-C stops the run and keeps the result file.
+Scene files: schemas/scene.schema.json. Ctrl-C, SIGTERM or SIGHUP stop the run and keep
+the result file (flushed at least every outputs.flush_interval seconds, default 2 s).
 Exit codes: 0 success, 2 bad input or usage, 1 failure while computing (or interrupted).
 )";
 
@@ -119,10 +122,24 @@ int main(int argc, char** argv) {
     }
     if (o.positional.size() != 1) throw ffriga::UsageError("expected one scene file (see --help)");
     if (o.output.empty()) throw ffriga::UsageError("missing -o RESULT.h5 (see --help)");
-    ffriga::Scene scene = ffriga::loadScene(o.positional[0], sidPaths, loadSid);
+    // Before any work: the result can be written, and it is none of the inputs (the SID
+    // files are checked as the scene names them, before each is read).
+    ffriga::checkOutputWritable(o.output, "-o");
+    ffriga::refuseInputAsOutput(o.output, "-o", o.positional[0], "the scene file");
+    auto guardedLoadSid = [&](const std::string& path) {
+      ffriga::refuseInputAsOutput(o.output, "-o", path, "a SID file of the scene");
+      return loadSid(path);
+    };
+    ffriga::installInterruptHandler();  // also while loading: a clean stop, exit code 1
+    ffriga::Scene scene = ffriga::loadScene(o.positional[0], sidPaths, guardedLoadSid);
+    if (ffriga::interruptRequested()) {
+      std::fprintf(stderr, "ffrsim: interrupted by %s while loading the scene; no result written\n",
+                   ffriga::interruptSignalName().c_str());
+      return 1;
+    }
     scene.settings.verbosity = o.verbosity;
     ffriga::ResultWriter writer(o.output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
-                                scene.doc.text, scene.flush_rows);
+                                scene.doc.text, scene.flush_rows, scene.flush_interval);
     if (!scene.warnings.empty()) {
       std::string all;
       for (const std::string& w : scene.warnings) {
@@ -136,7 +153,6 @@ int main(int argc, char** argv) {
       writer.setAttribute("static_preload_residual", scene.preload.residual);
       writer.setAttribute("static_preload_elastic_force", scene.preload.elastic_force);
     }
-    ffriga::installInterruptHandler();
     const ffriga::SimulationReport r =
         ffriga::simulate(*scene.system, scene.y0, scene.settings, writer);
     writer.close();

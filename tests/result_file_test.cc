@@ -108,7 +108,7 @@ TEST_CASE("result file: an interrupted run leaves a readable file", "[result]") 
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
   REQUIRE(f.id() >= 0);
   const std::string status = h5::readStringAttribute(h5::Context{path}, f.id(), "status");
-  REQUIRE(status.rfind("interrupted at t = ", 0) == 0);
+  REQUIRE(status.rfind("interrupted by SIGINT at t = ", 0) == 0);
   const Eigen::MatrixXd t = readDataset(f.id(), "time");
   REQUIRE(t.rows() >= 4);  // outputs up to ~0.2 s
   REQUIRE(t.rows() < 11);  // but not the whole run

@@ -115,7 +115,25 @@ ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& b
     w.hi = w.hi.cwiseMax(x);
   }
   (void)body;
+  const ExtractedSurface& surface = side.surface;
+  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
+  int e = surface.findElement(mid.data());
+  if (e < 0) e = 0;
+  SurfacePoint sp;
+  surface.evaluate(e, mid.data(), w.points, 1, sp);
+  w.mid_x = sp.x;
+  w.mid_n = (pose.A.determinant() < 0.0 ? -1.0 : 1.0) * surface.normal(sp.dx);
   return w;
+}
+
+double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge,
+                                    const Eigen::VectorXd& x, const SurfaceProjection& p) const {
+  // Axisymmetric: the end of the meridian on the axis (r = 0) is a point of symmetry, not
+  // an edge (there the collocation weight 2 pi r w is zero anyway).
+  if (dim_ == 2 && std::abs(p.point.x(0)) <= 1e-9 * size_) return 0.0;
+  const double edge = -n_edge.dot(x - p.point.x);
+  const double centre = -wt.mid_n.dot(x - wt.mid_x);
+  return std::max(0.0, std::min(edge, centre));
 }
 
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
@@ -137,6 +155,8 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
     if (dim_ == 2) state->force = Eigen::Vector3d(0.0, state->force(1), 0.0);
     state->normal_force = state->force.norm();
     state->max_penetration = std::max(s0.max_penetration, s1.max_penetration);
+    state->beyond_edge_penetration =
+        std::max(s0.beyond_edge_penetration, s1.beyond_edge_penetration);
     state->active_points = s0.active_points + s1.active_points;
     state->energy = s0.energy + s1.energy;
     state->projection_failures = s0.projection_failures + s1.projection_failures;
@@ -154,6 +174,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     bool active = false;
     bool failed = false;
     double gap = 0.0;
+    double beyond_edge = 0.0;  // penetration behind the edge's tangent plane (m)
     Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
     int element = -1;
     Eigen::VectorXd s;
@@ -173,7 +194,10 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     r.failed = !p.converged;
     if (!p.converged) continue;
     sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
-    if (!p.orthogonal) continue;
+    if (!p.orthogonal) {
+      r.beyond_edge = beyondEdgeDepth(wt, orientT * st.surface.normal(p.point.dx), x, p);
+      continue;
+    }
     // World normal: the body's rule applied to world tangents, turned back if the body's
     // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
     const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
@@ -196,6 +220,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   for (int i = 0; i < nc; ++i) {
     const PointResult& r = res[i];
     if (state && r.failed) ++state->projection_failures;
+    if (state) state->beyond_edge_penetration = std::max(state->beyond_edge_penetration, r.beyond_edge);
     if (!r.active) continue;
     // Contact body: rigid and elastic parts at the collocation point.
     C.addRigidPointForce(pc, r.xb, r.f, hC);
@@ -232,6 +257,40 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     for (std::size_t k = 0; k < st.cps.size(); ++k) flat.segment(k * d, d) = FT.row(k).transpose();
     Eigen::Map<Eigen::VectorXd>(hT + nrT, T.nq()) += st.PhiS.transpose() * flat;
   }
+}
+
+Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& pa,
+                                            const BodyModel& B, const BodyPose& pb) const {
+  const World w[2] = {worldPoints(side_[0], A, pa), worldPoints(side_[1], B, pb)};
+  const BodyPose* pose[2] = {&pa, &pb};
+  Penetration deepest;
+  for (int c = 0; c < (options_.both_roles ? 2 : 1); ++c) {
+    const Side& sc = side_[c];
+    const Side& st = side_[1 - c];
+    const BodyPose& pc = *pose[c];
+    const BodyPose& pt = *pose[1 - c];
+    const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
+    const int nc = static_cast<int>(sc.xc0.rows());
+    std::vector<double> depth(nc, 0.0);
+#pragma omp parallel for schedule(dynamic, 8) if (nc >= kParallelPoints)
+    for (int i = 0; i < nc; ++i) {
+      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q);
+      const SurfaceProjection p = closestPoint(st.surface, w[1 - c].points, x, nullptr);
+      if (!p.converged) continue;
+      const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
+      depth[i] = p.orthogonal ? std::max(0.0, -n.dot(x - p.point.x))
+                              : beyondEdgeDepth(w[1 - c], n, x, p);
+    }
+    for (int i = 0; i < nc; ++i) {  // in point order: the same answer on any thread count
+      if (depth[i] <= deepest.depth) continue;
+      deepest.depth = depth[i];
+      deepest.contact_body = index_[c];
+      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q);
+      deepest.point.setZero();
+      deepest.point.head(dim_) = x;
+    }
+  }
+  return deepest;
 }
 
 }  // namespace ffriga

@@ -39,12 +39,29 @@ struct ContactState {
   int active_points = 0;                            // collocation points with g_n < 0, both roles
   double energy = 0.0;          // J, penalty energy sum 1/2 c_p g_n^2 w_i, averaged
   int projection_failures = 0;  // closest-point searches that did not converge
+  // m: the deepest penetration the pair cannot represent: a collocation point near the
+  // target whose closest point is on the edge of the target's contact surface (beyond it)
+  // while the point is behind the surface's tangent planes at that edge point and at the
+  // surface's centre (ContactPair::beyondEdgeDepth). Such a point is inside the target body
+  // but gets no force: the contact region is too small for the motion (0 while every
+  // penetrating point has a proper foot point).
+  double beyond_edge_penetration = 0.0;
+};
+
+// The deepest initial penetration of a pair (ContactPair::deepestPenetration).
+struct Penetration {
+  double depth = 0.0;  // m, largest -g_n, 0 if none
+  int contact_body = -1;  // system index of the body whose collocation point it is
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // that point, world coordinates (m)
 };
 
 struct ContactOptions {
   double penalty = 0.0;         // c_p, N/m^3
   bool both_roles = true;       // average A->B and B->A (paper); else A is the contact body
   double search_margin = -1.0;  // m; < 0: 10 % of the larger surface's bounding box size
+  // m; < 0: 1e-6 of the larger surface's size (the initial penetration accepted, and the
+  // penetration beyond a surface's edge that stops a run)
+  double penetration_tolerance = -1.0;
 };
 
 // Linearisation of one active collocation point for the Newton matrix (Eq. 17-18): with
@@ -72,6 +89,16 @@ class ContactPair {
   double boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                 const BodyPose& pb) const;
   double surfaceSize() const { return size_; }
+  double penetrationTolerance() const {
+    return options_.penetration_tolerance > 0.0 ? options_.penetration_tolerance : 1e-6 * size_;
+  }
+  // The deepest penetration over every collocation point of both roles, without the
+  // bounding-box pre-check: -g_n where the closest point on the other surface is a proper
+  // foot point, beyondEdgeDepth where it is on the edge. Also bodies placed deep into each
+  // other (whose surfaces' boxes may be apart, or coincident centres) are found. For the
+  // initial state (a full closest-point search per point: not for every step).
+  Penetration deepestPenetration(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
+                                 const BodyPose& pb) const;
   // Linearisation of the active points of the last evaluate().
   const std::vector<ContactStiffnessTerm>& stiffnessTerms() const { return terms_; }
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
@@ -93,7 +120,14 @@ class ContactPair {
   struct World {
     Eigen::MatrixXd points;  // ncp x d, deformed control points in world coordinates
     Eigen::VectorXd lo, hi;  // bounding box of the surface's points
+    // The surface point at the centre of its parameter domain and its world normal.
+    Eigen::VectorXd mid_x, mid_n;
   };
+  // Depth of x behind the surface for a closest point p on the edge (not orthogonal): behind
+  // both the tangent plane at p and the one at the surface's centre (a point beside the
+  // surface is in front of one of them), else 0.
+  double beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge, const Eigen::VectorXd& x,
+                         const SurfaceProjection& p) const;
   void setupSide(Side& side, const BodyModel& body, int surface);
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,

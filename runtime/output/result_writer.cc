@@ -16,8 +16,11 @@ hid_t check(hid_t status, const std::string& what, const std::string& file) {
 
 ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& system,
                            const std::string& created_by, const std::string& scene_yaml,
-                           int flush_rows)
-    : path_(path), flush_rows_(flush_rows) {
+                           int flush_rows, double flush_interval)
+    : path_(path),
+      flush_rows_(flush_rows),
+      flush_interval_(flush_interval),
+      last_flush_(std::chrono::steady_clock::now()) {
   h5::silenceErrors();
   const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
   if (f < 0) throw InputError(Str() << path << ": cannot create the result file");
@@ -292,7 +295,16 @@ void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& s
   appendRow(*gravity_, &e.gravity);
   appendMultibodyRows(y, system);
   ++rows_;
-  if (rows_ % flush_rows_ == 0) flush();
+  if (rows_ % flush_rows_ == 0)
+    flush();
+  else
+    flushIfDue();
+}
+
+void ResultWriter::flushIfDue() {
+  if (rows_ == written_) return;
+  const auto now = std::chrono::steady_clock::now();
+  if (std::chrono::duration<double>(now - last_flush_).count() >= flush_interval_) flush();
 }
 
 void ResultWriter::flush() {
@@ -300,6 +312,7 @@ void ResultWriter::flush() {
   for (auto& series : series_) writePending(*series);
   written_ = rows_;
   check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
+  last_flush_ = std::chrono::steady_clock::now();
 }
 
 void ResultWriter::setAttribute(const std::string& name, const std::string& value) {

@@ -2,10 +2,14 @@
 //
 // The file grows as the run goes: every series is a chunked dataset with an unlimited first
 // dimension (one row per output time), rows are appended and the file is flushed every
-// `flush_rows` rows and on close, so a run that fails or is interrupted leaves a readable
-// file with every flushed output and the root attribute `status` saying why it stopped.
+// `flush_rows` rows, at least every `flush_interval` seconds of wall time (flushIfDue, called
+// after every step) and on close. Between flushes nothing is written to the file, so a run
+// that fails, is interrupted or even killed (SIGKILL) leaves a readable file with every row
+// older than the flush interval, and the root attribute `status` saying why it stopped
+// ("running" if it was killed).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,12 +29,15 @@ class ResultWriter {
   // Creates (truncates) `path`; writes the root attributes format, format_version,
   // created_by, scene_yaml and status = "running", and the layout of `system`.
   ResultWriter(const std::string& path, const MultibodySystem& system,
-               const std::string& created_by, const std::string& scene_yaml, int flush_rows = 16);
+               const std::string& created_by, const std::string& scene_yaml, int flush_rows = 16,
+               double flush_interval = 2.0);
   ~ResultWriter();
 
   // One output row at time t (s) for state y.
   void append(double t, const Eigen::VectorXd& y, MultibodySystem& system);
   void flush();
+  // Flushes if rows are pending and the last flush is flush_interval or more seconds ago.
+  void flushIfDue();
   long rows() const { return rows_; }
   // Root attributes (replaced if present): status, wall_time_s, solver statistics, ...
   void setAttribute(const std::string& name, const std::string& value);
@@ -85,6 +92,8 @@ class ResultWriter {
   void appendMultibodyRows(const Eigen::VectorXd& y, MultibodySystem& system);
   long rows_ = 0;
   int flush_rows_ = 16;
+  double flush_interval_ = 2.0;  // s of wall time
+  std::chrono::steady_clock::time_point last_flush_;
 };
 
 }  // namespace ffriga

@@ -344,6 +344,13 @@ double MultibodySystem::contactGap(const double* y, double* size) const {
   return gap;
 }
 
+Penetration MultibodySystem::deepestPenetration(const double* y, int c) const {
+  const ContactPair& pair = *contacts_[c];
+  const int a = pair.bodyA(), b = pair.bodyB();
+  return pair.deepestPenetration(*bodies_[a], bodies_[a]->pose(y + pos_offset_[a]), *bodies_[b],
+                                 bodies_[b]->pose(y + pos_offset_[b]));
+}
+
 SystemEnergies MultibodySystem::energies(const double* y) {
   SystemEnergies e;
   for (int b = 0; b < numBodies(); ++b) {

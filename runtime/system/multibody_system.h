@@ -158,6 +158,8 @@ class MultibodySystem : public OdeSystem {
   // The smallest bounding-box gap of the contact pairs at y (ContactPair::boxGap, m;
   // +infinity without pairs) and the size of that pair's surfaces (m).
   double contactGap(const double* y, double* size = nullptr) const;
+  // The deepest penetration of contact pair c at y (ContactPair::deepestPenetration).
+  Penetration deepestPenetration(const double* y, int c) const;
   // Total linear and angular momentum (about the inertial origin), inertial components.
   void momentum(const double* y, Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
 

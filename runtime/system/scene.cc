@@ -205,6 +205,46 @@ void applyQuasiStaticRule(const YamlDocument& doc, const YAML::Node& B, const st
                              << "coordinate (no velocity of its own): expected 0");
 }
 
+// Bodies must not start inside each other: a penetration beyond the pair's tolerance
+// (ContactPair::penetrationTolerance) is bad input, with the depth in the message. Two
+// spheres placed 5 mm into each other once ran to `completed` with zero force: their
+// contact surfaces' boxes were apart, so no point was ever evaluated.
+void checkInitialPenetration(const YamlDocument& doc, const MultibodySystem& sys,
+                             const Eigen::VectorXd& y0) {
+  for (int c = 0; c < sys.numContacts(); ++c) {
+    const ContactPair& pair = sys.contact(c);
+    const Penetration p = sys.deepestPenetration(y0.data(), c);
+    const double tol = pair.penetrationTolerance();
+    if (p.depth <= tol) continue;
+    const std::string k = Str() << "contacts[" << c << "]";
+    throw inputError(doc, doc.root["contacts"][c], k,
+                     Str() << "bodies '" << sys.body(pair.bodyA()).name() << "' and '"
+                           << sys.body(pair.bodyB()).name() << "' start " << p.depth
+                           << " m into each other (a point of '"
+                           << sys.body(p.contact_body).name() << "' at (" << p.point.transpose()
+                           << ") m); at most " << tol
+                           << " m is accepted (key penetration_tolerance): move them apart");
+  }
+}
+
+// The number of output rows end_time / output_interval must be a count the run can reach:
+// at most kMaxOutputRows (an int), and consecutive output times distinct in double precision.
+// (An interval of 1e-300 s once made the row count overflow: the run stopped after one step
+// and reported `completed`.)
+void checkOutputRows(const YamlDocument& doc) {
+  constexpr double kMaxOutputRows = 2147483647.0;
+  const YAML::Node I = doc.root["integrator"];
+  const double end = getDouble(doc, I["end_time"], "integrator.end_time");
+  const double dt = getDouble(doc, I["output_interval"], "integrator.output_interval");
+  const double rows = std::ceil(end / dt);
+  if (!(rows <= kMaxOutputRows) || !(dt >= 1e-12 * end)) {
+    throw inputError(doc, I["output_interval"], "integrator.output_interval",
+                     Str() << dt << " s over end_time " << end << " s gives " << rows
+                           << " output rows; at most " << static_cast<long>(kMaxOutputRows)
+                           << " rows, with an interval of at least 1e-12 of end_time");
+  }
+}
+
 }  // namespace
 
 Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_paths,
@@ -218,6 +258,7 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
   scene.name =
       root["name"] ? getString(doc, root["name"], "name") : fs::path(doc.path).stem().string();
   const std::map<std::string, int> index = checkNames(doc);
+  checkOutputRows(doc);
   const YAML::Node bodies = root["bodies"];
   const std::vector<std::shared_ptr<FlexibleBodySid>> sids =
       loadBodyData(doc, sid_paths, load_sid, scene.sid_files);
@@ -342,6 +383,8 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
                        Str() << "expected a number > 0 N/m^3, found " << o.penalty);
     if (C["both_roles"]) o.both_roles = C["both_roles"].as<bool>();
     o.search_margin = doubleOr(doc, C["search_margin"], k + ".search_margin", -1.0);
+    o.penetration_tolerance =
+        doubleOr(doc, C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
     const std::string name = C["name"] ? getString(doc, C["name"], k + ".name")
                                        : sys.body(ia).name() + "-" + sys.body(ib).name();
     sys.addContact(std::make_unique<ContactPair>(name, ia, sys.body(ia), surf[0], ib, sys.body(ib),
@@ -427,12 +470,14 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
     }
   }
   checkInitialConstraints(doc, sys, scene.y0);
+  checkInitialPenetration(doc, sys, scene.y0);
   if (root["static_preload"] && root["static_preload"].as<bool>()) {
     scene.static_preload = true;
     scene.preload = staticPreload(sys, scene.y0);
   }
   if (const YAML::Node O = root["outputs"]) {
     if (O["flush_rows"]) scene.flush_rows = getInt(doc, O["flush_rows"], "outputs.flush_rows");
+    scene.flush_interval = doubleOr(doc, O["flush_interval"], "outputs.flush_interval", 2.0);
     s.progress_interval = doubleOr(doc, O["progress_interval"], "outputs.progress_interval", 1.0);
     s.contact_output_interval =
         doubleOr(doc, O["contact_output_interval"], "outputs.contact_output_interval", 0.0);

@@ -44,6 +44,7 @@ struct Scene {
   Eigen::VectorXd y0;
   SimulationSettings settings;
   int flush_rows = 16;
+  double flush_interval = 2.0;  // s of wall time
   std::vector<std::string> sid_files;  // resolved path of each body's SID
   // Initial reference position (m) and velocity (m/s) of each body, inertial components,
   // as given in the scene.

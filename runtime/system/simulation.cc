@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <vector>
 
@@ -12,12 +11,6 @@
 namespace ffriga {
 
 namespace {
-
-volatile std::sig_atomic_t g_interrupt = 0;
-
-extern "C" void onInterrupt(int) {
-  g_interrupt = 1;
-}
 
 using Clock = std::chrono::steady_clock;
 
@@ -83,20 +76,24 @@ class ApproachControl {
   bool have_ = false;
 };
 
-}  // namespace
+// A penetration the contact surfaces cannot represent (ContactState::beyond_edge_penetration)
+// stops the run: its force would be missing, and the result would look fine.
+void checkRepresentable(const MultibodySystem& system, double t) {
+  const std::vector<ContactState>& states = system.lastRhsContacts();
+  for (int c = 0; c < static_cast<int>(states.size()); ++c) {
+    const ContactPair& pair = system.contact(c);
+    if (states[c].beyond_edge_penetration <= pair.penetrationTolerance()) continue;
+    throw ComputeError(Str() << "contact '" << pair.name() << "': at t = " << t << " s a point "
+                             << "penetrates by " << states[c].beyond_edge_penetration
+                             << " m beyond the edge of a contact surface (bodies '"
+                             << system.body(pair.bodyA()).name() << "' and '"
+                             << system.body(pair.bodyB()).name() << "'), where it gets no force: "
+                             << "the contact region is too small for this motion (enlarge "
+                             << "contact.region in the body file)");
+  }
+}
 
-void installInterruptHandler() {
-  std::signal(SIGINT, onInterrupt);
-}
-bool interruptRequested() {
-  return g_interrupt != 0;
-}
-void requestInterrupt() {
-  g_interrupt = 1;
-}
-void clearInterrupt() {
-  g_interrupt = 0;
-}
+}  // namespace
 
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
                           const SimulationSettings& settings, ResultWriter& writer) {
@@ -143,6 +140,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
         contact = contact || s.active_points > 0;
         report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
       }
+      checkRepresentable(system, t);
       for (int f = 0; f < system.numLineForces(); ++f) {  // Hertz point contacts
         if (!system.lineForce(f).isContact()) continue;
         const double force = -system.lastRhsLineForces()[f].tension;
@@ -180,6 +178,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       else if (phase == 1)
         phase = 2;
       tPrev = t;
+      writer.flushIfDue();
       const IntegratorStats now = integ.stats();
       PhaseStats& ps = phase == 0 ? report.before : phase == 1 ? report.during : report.after;
       const Clock::time_point s1 = Clock::now();
@@ -207,7 +206,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
     report.final_time = t;
     report.wall_time_s = seconds(start, Clock::now());
     if (report.interrupted) {
-      report.status = Str() << "interrupted at t = " << t << " s";
+      report.status = Str() << "interrupted by " << interruptSignalName() << " at t = " << t << " s";
     } else {
       report.completed = true;
       report.status = "completed";

@@ -1,12 +1,13 @@
 // The time loop of ffrsim: integrates a MultibodySystem with the BDF integrator, writes an
 // output row at every multiple of the output interval (interpolated, CVodeGetDky, so outputs
-// never shorten the steps), reports progress on stderr, honours an interrupt request
-// (SIGINT) between steps, and measures the phases of paper Table 3: wall time, steps and
-// right-hand sides before the first contact, during contact and after it.
+// never shorten the steps), flushes the result file by rows and by wall time, reports
+// progress on stderr, honours a stop request (SIGINT, SIGTERM, SIGHUP:
+// runtime/system/interrupt.h) between steps, and measures the phases of paper Table 3: wall
+// time, steps and right-hand sides before the first contact, during contact and after it.
 //
 // The result file always ends with the root attribute `status`: "completed",
-// "interrupted at t = ... s" or "failed at t = ... s: MESSAGE"; with wall_time_s (time
-// integration only) and the solver statistics.
+// "interrupted by SIGTERM at t = ... s" or "failed at t = ... s: MESSAGE"; with wall_time_s
+// (time integration only) and the solver statistics.
 #pragma once
 
 #include <string>
@@ -15,6 +16,7 @@
 
 #include "runtime/integration/bdf_integrator.h"
 #include "runtime/output/result_writer.h"
+#include "runtime/system/interrupt.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {
@@ -50,12 +52,6 @@ struct SimulationReport {
   double contact_begin = -1.0;
   double contact_end = -1.0;
 };
-
-// SIGINT handling: the first Ctrl-C requests a stop (checked between steps).
-void installInterruptHandler();
-bool interruptRequested();
-void requestInterrupt();  // for tests
-void clearInterrupt();
 
 // Runs from (0, y0) to settings.end_time. Integration failures are recorded in the file and
 // the report (completed = false) and rethrown as ComputeError after the file is closed.
