@@ -229,15 +229,16 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
 
   if (node.IsSequence()) {
     const int n = static_cast<int>(node.size());
+    auto count = [](int k) -> std::string { return Str() << k << (k == 1 ? " item" : " items"); };
     if (schema["minItems"] && n < schema["minItems"].as<int>()) {
-      throw inputError(
-          doc, where, key,
-          Str() << "expected at least " << schema["minItems"].as<int>() << " items, found " << n);
+      throw inputError(doc, where, key,
+                       Str() << "expected at least " << count(schema["minItems"].as<int>())
+                             << ", found " << n);
     }
     if (schema["maxItems"] && n > schema["maxItems"].as<int>()) {
-      throw inputError(
-          doc, where, key,
-          Str() << "expected at most " << schema["maxItems"].as<int>() << " items, found " << n);
+      throw inputError(doc, where, key,
+                       Str() << "expected at most " << count(schema["maxItems"].as<int>())
+                             << ", found " << n);
     }
     if (const YAML::Node items = schema["items"]) {
       for (int i = 0; i < n; ++i) {

@@ -1,5 +1,7 @@
 #include "preproc/body_config.h"
 
+#include "preproc/size_estimate.h"
+
 #include <array>
 #include <map>
 
@@ -389,7 +391,7 @@ double ReductionConfig::dampingRatio(double f_hz, double f1_hz) const {
   return zeta;
 }
 
-BodyConfig parseBodyConfig(YamlDocument doc) {
+BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes) {
   static const JsonSchema schema(kBodySchema, "body.schema.json");
   schema.validate(doc);
   BodyConfig c;
@@ -453,6 +455,8 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
     }
   }
   parseInsert(doc, r ? r["insert"] : YAML::Node(), d, c);
+  const double limit = memory_limit_bytes > 0.0 ? memory_limit_bytes : physicalMemoryBytes();
+  checkSizeLimit(doc, r, estimateSize(c), limit);  // before the refinement allocates
   NurbsPatch refined;
   try {
     refined = refinedPatch(c);
@@ -460,6 +464,7 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
     throw inputError(doc, r["insert"], "refinement.insert", e.what());
   }
   parseHierarchy(doc, root["hierarchy"], refined, c);
+  if (c.global_reference) checkSizeLimit(doc, r, estimateGlobalReferenceSize(c, refined), limit);
   if (!c.hierarchy.truncated && !c.global_reference) {
     try {
       HierarchicalSpace(refined, c.hierarchy);  // HB can fail (zero weights): report it now
@@ -474,8 +479,8 @@ BodyConfig parseBodyConfig(YamlDocument doc) {
   return c;
 }
 
-BodyConfig loadBodyConfig(const std::string& path) {
-  return parseBodyConfig(loadYamlFile(path));
+BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes) {
+  return parseBodyConfig(loadYamlFile(path), memory_limit_bytes);
 }
 
 NurbsPatch refinedPatch(const BodyConfig& config) {

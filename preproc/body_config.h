@@ -86,8 +86,10 @@ struct BodyConfig {
 // Loads, validates against the body schema and checks the semantics (list lengths match
 // the parametric dimension, knot vectors valid, one weight per control point, the model
 // matches the geometry). Throws InputError (file, key, line).
-BodyConfig loadBodyConfig(const std::string& path);
-BodyConfig parseBodyConfig(YamlDocument doc);
+// memory_limit_bytes: inputs whose size estimate (preproc/size_estimate.h) exceeds it are
+// refused before refinement; 0: this machine's physical memory.
+BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes = 0.0);
+BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes = 0.0);
 
 // The globally refined patch: degree elevation, then uniform knot insertion, then the
 // explicit knots, per direction. Hierarchy boxes refer to this patch's knot coordinates.

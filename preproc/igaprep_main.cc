@@ -15,6 +15,8 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 
@@ -24,6 +26,7 @@
 #include "common/version.h"
 #include "preproc/body_config.h"
 #include "preproc/body_reduction.h"
+#include "preproc/size_estimate.h"
 
 namespace {
 
@@ -44,6 +47,8 @@ options:
   -q, --quiet        print nothing but errors (no progress, no summary)
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
+  --max-memory GIB   refuse bodies whose estimated matrices and factor need more (default:
+                     this machine's physical memory)
   -h, --help         show this help and exit
   --version          show the version and exit
 
@@ -160,12 +165,26 @@ int main(int argc, char** argv) {
   return ffriga::runProgram("igaprep", [&]() {
     const auto start = std::chrono::steady_clock::now();
     std::string info;
+    double maxMemoryGiB = 0.0;  // 0: this machine's physical memory
     const ffriga::CommonOptions o =
         ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
-          if (std::string(av[i]) != "--info") return 0;
-          if (i + 1 >= ac) throw ffriga::UsageError("option --info needs a SID file");
-          info = av[i + 1];
-          return 2;
+          const std::string a = av[i];
+          if (a == "--info") {
+            if (i + 1 >= ac) throw ffriga::UsageError("option --info needs a SID file");
+            info = av[i + 1];
+            return 2;
+          }
+          if (a == "--max-memory") {
+            if (i + 1 >= ac) throw ffriga::UsageError("option --max-memory needs a value (GiB)");
+            char* end = nullptr;
+            maxMemoryGiB = std::strtod(av[i + 1], &end);
+            if (*end != '\0' || !(maxMemoryGiB > 0.0) || !std::isfinite(maxMemoryGiB)) {
+              throw ffriga::UsageError(ffriga::Str() << "--max-memory expects a number of GiB > 0, "
+                                                     << "found '" << av[i + 1] << "'");
+            }
+            return 2;
+          }
+          return 0;
         });
     if (o.help) {
       std::cout << kUsage;
@@ -190,7 +209,21 @@ int main(int argc, char** argv) {
       ffriga::checkOutputWritable(o.output, "-o");
       ffriga::refuseInputAsOutput(o.output, "-o", o.positional[0], "the body file");
     }
-    const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0]);
+    const double limit =
+        maxMemoryGiB > 0.0 ? maxMemoryGiB * 1024.0 * 1024.0 * 1024.0 : ffriga::physicalMemoryBytes();
+    // The size estimate is checked while loading, before the refinement allocates.
+    const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0], limit);
+    if (o.verbosity > 1) {
+      const ffriga::SizeEstimate size =
+          config.global_reference
+              ? ffriga::estimateGlobalReferenceSize(config, ffriga::refinedPatch(config))
+              : ffriga::estimateSize(config);
+      std::fprintf(stderr,
+                   "igaprep: size estimate: %.4g control points, %.4g DOFs, %.4g entries of K, "
+                   "at least %.4g GiB (limit %.4g GiB)\n",
+                   size.control_points, size.dofs, size.nonzeros,
+                   size.bytes / (1024.0 * 1024.0 * 1024.0), limit / (1024.0 * 1024.0 * 1024.0));
+    }
     if (o.output.empty()) {
       printGeometry(config, ffriga::refinedPatch(config), o.verbosity);
       if (o.verbosity > 0) printHierarchy(config, ffriga::bodySpace(config));

@@ -19,7 +19,15 @@ void installInterruptHandler() {
   action.sa_handler = onStopSignal;
   sigemptyset(&action.sa_mask);
   action.sa_flags = SA_RESTART;  // reads and writes in progress complete
-  for (int s : {SIGINT, SIGTERM, SIGHUP}) sigaction(s, &action, nullptr);
+  sigset_t stop;
+  sigemptyset(&stop);
+  for (int s : {SIGINT, SIGTERM, SIGHUP}) {
+    sigaction(s, &action, nullptr);
+    sigaddset(&stop, s);
+  }
+  // A launcher may start us with these blocked (they are inherited across exec): unblocked
+  // here, a stop requested before this point is delivered now and honoured.
+  sigprocmask(SIG_UNBLOCK, &stop, nullptr);
 }
 
 bool interruptRequested() {

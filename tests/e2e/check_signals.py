@@ -1,0 +1,142 @@
+"""Batch-scheduler signals (issue 13), on a ~10 s run of the Sect. 5 impact (sphere2d_h3 with
+steps limited to 6 ns; the result flushed by wall time only: flush_interval 1 s, flush_rows
+too large to matter):
+  * SIGTERM and SIGHUP at a random moment: exit code 1, the file opens, its status says
+    which signal and when, and it holds every row up to then, equal bit for bit to the rows
+    of the uninterrupted run (same input, same bits);
+  * SIGKILL at a random moment: the file opens (status still `running`), its rows are a
+    prefix of the uninterrupted run's, and it holds every row that had been computed one
+    flush interval (plus 0.5 s of margin for a slow step) before the kill, as told by the
+    progress lines on stderr;
+  * SIGTERM while loading (sent before ffrsim starts, with the signal blocked by the
+    launcher: it is pending until ffrsim installs its handler): exit code 1 and a message.
+The random moments are printed (seeded from the clock).
+
+usage: check_signals.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
+"""
+import os
+import random
+import re
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import h5py
+import numpy as np
+
+from result_checks import Checks
+
+igaprep, ffrsim, source, out = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+check = Checks()
+FLUSH_INTERVAL = 1.0
+subprocess.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"),
+                "-o", os.path.join(out, "sphere2d_h3.sid.h5")], check=True)
+with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
+    text = f.read()
+for old, new in (("  rtol: 1.0e-6", "  rtol: 1.0e-6\n  max_step: 6.0e-9"),
+                 ("  flush_rows: 100", f"  flush_rows: 1000000\n  flush_interval: {FLUSH_INTERVAL}\n"
+                  "  progress_interval: 0.1")):
+    assert old in text, old
+    text = text.replace(old, new)
+scene = os.path.join(out, "long.yaml")
+with open(scene, "w") as f:
+    f.write(text)
+
+
+def rows_of(path):
+    with h5py.File(path, "r") as f:
+        status = f.attrs["status"]
+        status = status.decode() if isinstance(status, bytes) else status
+        return status, f["time"][()], f["contacts/impact/normal_force"][()]
+
+
+def start(result, preexec=None):
+    return subprocess.Popen([ffrsim, "-v", scene, "-o", result], stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True, preexec_fn=preexec)
+
+
+def progress_reader(proc, lines):
+    """Collects (arrival time, simulated time) of the progress lines."""
+    for line in proc.stderr:
+        m = re.match(r"ffrsim: t = ([0-9.e+-]+) s", line)
+        if m:
+            lines.append((time.monotonic(), float(m.group(1))))
+
+
+# The uninterrupted reference.
+t0 = time.monotonic()
+ref = os.path.join(out, "reference.h5")
+r = subprocess.run([ffrsim, "-q", scene, "-o", ref])
+wall = time.monotonic() - t0
+status, ref_t, ref_f = rows_of(ref)
+check(r.returncode == 0 and status == "completed" and len(ref_t) == 1001,
+      f"reference: {status}, {len(ref_t)} rows in {wall:.1f} s")
+seed = int(time.time())
+rng = random.Random(seed)
+print(f"random moments from seed {seed}")
+
+
+def prefix_of_reference(t, f, what):
+    n = len(t)
+    same = n <= len(ref_t) and np.array_equal(t, ref_t[:n]) and np.array_equal(f, ref_f[:n])
+    check(same, f"{what}: its {n} rows equal the reference's first {n}, bit for bit")
+
+
+for sig in (signal.SIGTERM, signal.SIGHUP):
+    name = signal.Signals(sig).name
+    result = os.path.join(out, f"{name}.h5")
+    delay = rng.uniform(0.1, 0.8) * wall
+    proc = start(result)
+    lines = []
+    reader = threading.Thread(target=progress_reader, args=(proc, lines))
+    reader.start()
+    time.sleep(delay)
+    proc.send_signal(sig)
+    rc = proc.wait()
+    reader.join()
+    status, t, f = rows_of(result)
+    m = re.match(rf"interrupted by {name} at t = ([0-9.e+-]+) s", status)
+    t_stop = float(m.group(1)) if m else -1.0
+    expected = int(np.floor(t_stop / 1e-7 * (1 + 1e-12))) + 1 if m else -1
+    check(rc == 1 and m is not None, f"{name} after {delay:.2f} s: exit {rc}, status '{status}'")
+    check(len(t) == expected and t[-1] <= t_stop,
+          f"{name}: {len(t)} rows, every output up to t = {t_stop:.6g} s ({expected})")
+    prefix_of_reference(t, f, name)
+
+# SIGKILL: nothing can be done at the kill; what was flushed must be readable.
+result = os.path.join(out, "SIGKILL.h5")
+delay = rng.uniform(0.3, 0.8) * wall
+proc = start(result)
+lines = []
+reader = threading.Thread(target=progress_reader, args=(proc, lines))
+reader.start()
+time.sleep(delay)
+killed_at = time.monotonic()
+proc.kill()
+proc.wait()
+reader.join()
+status, t, f = rows_of(result)
+older = [sim for arrival, sim in lines if arrival <= killed_at - FLUSH_INTERVAL - 0.5]
+needed = max(older) if older else 0.0
+check(status == "running" and len(t) > 0 and t[-1] >= needed * (1 - 1e-12),
+      f"SIGKILL after {delay:.2f} s: status '{status}', {len(t)} rows up to t = {t[-1]:.6g} s, "
+      f"at least up to {needed:.6g} s (computed {FLUSH_INTERVAL} + 0.5 s before the kill)")
+prefix_of_reference(t, f, "SIGKILL")
+
+
+# SIGTERM before ffrsim runs: blocked by the launcher, pending, delivered at the handler.
+def block_sigterm():
+    signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGTERM})
+
+
+result = os.path.join(out, "loading.h5")
+proc = start(result, preexec=block_sigterm)
+proc.send_signal(signal.SIGTERM)
+err = proc.stderr.read()
+rc = proc.wait()
+check(rc == 1 and "interrupted by SIGTERM while loading the scene" in err
+      and not os.path.exists(result), f"SIGTERM while loading: exit {rc}, {err.strip()}")
+check.exit()
