@@ -1,19 +1,24 @@
 // ffrsim: flexible bodies in the floating frame of reference with NURBS penalty contact.
 //
 //   ffrsim SCENE.yaml -o RESULT.h5 [--sid-path DIR]... [-q|-v] [--threads N]
+//   ffrsim --restart RESULT.h5 [--end-time T] [--sid-path DIR]...
 //
 // Loads the scene (schemas/scene.schema.json) and the bodies' SID files, integrates the
 // equations of motion (paper Eq. 1) with penalty contact (Sect. 4) by CVODE's BDF method and
 // writes the result file (schemas/result_format.md) as the run goes. Ctrl-C, SIGTERM and
 // SIGHUP stop the run between steps and leave a complete, readable file whose `status`
 // says so.
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "common/cli.h"
 #include "common/output_path.h"
 #include "common/version.h"
 #include "runtime/contact/hertz_reference.h"
+#include "runtime/output/restart_record.h"
 #include "runtime/output/result_writer.h"
 #include "runtime/system/scene.h"
 #include "runtime/system/simulation.h"
@@ -26,6 +31,7 @@
 namespace {
 
 constexpr const char* kUsage = R"(usage: ffrsim SCENE.yaml -o RESULT.h5 [options]
+       ffrsim --restart RESULT.h5 [--end-time T] [options]
 
 Simulates impacts between reduced flexible bodies (SID files written by igaprep) in the
 floating frame of reference with penalty contact between NURBS surfaces.
@@ -34,6 +40,10 @@ options:
   -o, --output FILE  result file (HDF5, schemas/result_format.md)
   --sid-path DIR     folder to search for SID files named in the scene (repeatable);
                      relative names are tried in the scene's folder first
+  --restart FILE     continue the run of result FILE from its last complete row (an
+                     interrupted, failed or finished run), appending to FILE; the scene and
+                     the SID files are the ones the run used
+  --end-time T       with --restart: continue up to T seconds (default: the run's end time)
   -q, --quiet        print nothing but errors
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
@@ -100,16 +110,96 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
   }
 }
 
+// Command-line options of ffrsim beyond the common ones.
+struct RunOptions {
+  std::vector<std::string> sid_paths;
+  std::string restart;     // --restart RESULT.h5
+  double end_time = -1.0;  // --end-time T (s), with --restart
+};
+
+double parseEndTime(const std::string& v) {
+  char* end = nullptr;
+  const double t = std::strtod(v.c_str(), &end);
+  if (v.empty() || *end != '\0' || !(t > 0.0) || !std::isfinite(t))
+    throw ffriga::UsageError(ffriga::Str() << "--end-time expects a time > 0 s, found '" << v << "'");
+  return t;
+}
+
+// Phase 1 of a restart: the record, the scene as the run had it (its text, its folder for
+// relative SID names, the same SID files) and the new end time.
+ffriga::Scene loadRestartScene(const ffriga::RestartRecord& rec, const RunOptions& ro,
+                               std::vector<std::string> sid_paths,
+                               const ffriga::SidLoader& load) {
+  namespace fs = std::filesystem;
+  for (const std::string& f : rec.sid_files) sid_paths.push_back(fs::path(f).parent_path().string());
+  ffriga::Scene scene =
+      ffriga::buildScene(ffriga::parseYamlText(rec.scene_yaml, rec.scene_path), sid_paths, load);
+  for (std::size_t b = 0; b < scene.sid_files.size() && b < rec.sid_files.size(); ++b) {
+    std::error_code ec;
+    if (!scene.sid_files[b].empty() && !fs::equivalent(scene.sid_files[b], rec.sid_files[b], ec)) {
+      throw ffriga::InputError(ffriga::Str() << ro.restart << ": the scene now finds SID file "
+                                             << scene.sid_files[b] << " where the run used "
+                                             << rec.sid_files[b]);
+    }
+  }
+  const double end = ro.end_time > 0.0 ? ro.end_time : rec.end_time;
+  if (!(end > rec.time * (1.0 + 1e-12))) {
+    throw ffriga::InputError(ffriga::Str()
+                             << ro.restart << ": the run is " << rec.status << " and its last row "
+                             << "is at t = " << rec.time << " s; nothing to continue up to "
+                             << end << " s (give a later --end-time)");
+  }
+  scene.settings.end_time = end;
+  if (rec.state.size() != scene.system->size()) {
+    throw ffriga::InputError(ffriga::Str() << ro.restart << ": the restart state has "
+                                           << rec.state.size() << " entries, the scene's system "
+                                           << scene.system->size());
+  }
+  scene.y0 = rec.state;
+  return scene;
+}
+
+// Root attributes a later restart needs: where the scene was, which SIDs, the end time.
+void writeRunAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene,
+                        const std::string& scene_path) {
+  namespace fs = std::filesystem;
+  std::string sids;
+  for (const std::string& f : scene.sid_files)
+    sids += (f.empty() ? std::string() : fs::absolute(f).lexically_normal().string()) + "\n";
+  writer.setAttribute("scene_path", fs::absolute(scene_path).lexically_normal().string());
+  writer.setAttribute("sid_files", sids);
+  writer.setAttribute("end_time_s", scene.settings.end_time);
+}
+
+void writeModelAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene, int verbosity) {
+  if (!scene.warnings.empty()) {
+    std::string all;
+    for (const std::string& w : scene.warnings) {
+      if (verbosity > 0) std::fprintf(stderr, "ffrsim: warning: %s\n", w.c_str());
+      all += (all.empty() ? "" : "\n") + w;
+    }
+    writer.setAttribute("warnings", all);
+  }
+  if (scene.static_preload) {
+    writer.setAttribute("static_preload_iterations", static_cast<long>(scene.preload.iterations));
+    writer.setAttribute("static_preload_residual", scene.preload.residual);
+    writer.setAttribute("static_preload_elastic_force", scene.preload.elastic_force);
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return ffriga::runProgram("ffrsim", [&]() {
-    std::vector<std::string> sidPaths;
+    RunOptions ro;
     const ffriga::CommonOptions o =
         ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
-          if (std::string(av[i]) != "--sid-path") return 0;
-          if (i + 1 >= ac) throw ffriga::UsageError("option --sid-path needs a value");
-          sidPaths.push_back(av[i + 1]);
+          const std::string a = av[i];
+          if (a != "--sid-path" && a != "--restart" && a != "--end-time") return 0;
+          if (i + 1 >= ac) throw ffriga::UsageError("option " + a + " needs a value");
+          if (a == "--sid-path") ro.sid_paths.push_back(av[i + 1]);
+          if (a == "--restart") ro.restart = av[i + 1];
+          if (a == "--end-time") ro.end_time = parseEndTime(av[i + 1]);
           return 2;
         });
     if (o.help) {
@@ -120,46 +210,54 @@ int main(int argc, char** argv) {
       std::cout << "ffrsim " << ffriga::kVersion << "\n";
       return 0;
     }
-    if (o.positional.size() != 1) throw ffriga::UsageError("expected one scene file (see --help)");
-    if (o.output.empty()) throw ffriga::UsageError("missing -o RESULT.h5 (see --help)");
+    const bool restart = !ro.restart.empty();
+    if (restart) {
+      if (!o.positional.empty() || !o.output.empty())
+        throw ffriga::UsageError("--restart takes the result file only: no scene file, no -o");
+    } else {
+      if (o.positional.size() != 1) throw ffriga::UsageError("expected one scene file (see --help)");
+      if (o.output.empty()) throw ffriga::UsageError("missing -o RESULT.h5 (see --help)");
+      if (ro.end_time > 0.0) throw ffriga::UsageError("--end-time goes with --restart");
+    }
+    const std::string output = restart ? ro.restart : o.output;
     // Before any work: the result can be written, and it is none of the inputs (the SID
     // files are checked as the scene names them, before each is read).
-    ffriga::checkOutputWritable(o.output, "-o");
-    ffriga::refuseInputAsOutput(o.output, "-o", o.positional[0], "the scene file");
+    ffriga::checkOutputWritable(output, restart ? "--restart" : "-o");
+    if (!restart) ffriga::refuseInputAsOutput(output, "-o", o.positional[0], "the scene file");
     auto guardedLoadSid = [&](const std::string& path) {
-      ffriga::refuseInputAsOutput(o.output, "-o", path, "a SID file of the scene");
+      ffriga::refuseInputAsOutput(output, restart ? "--restart" : "-o", path,
+                                  "a SID file of the scene");
       return loadSid(path);
     };
     ffriga::installInterruptHandler();  // also while loading: a clean stop, exit code 1
-    ffriga::Scene scene = ffriga::loadScene(o.positional[0], sidPaths, guardedLoadSid);
+    ffriga::RestartRecord record;
+    if (restart) record = ffriga::readRestartRecord(output);
+    ffriga::Scene scene = restart ? loadRestartScene(record, ro, ro.sid_paths, guardedLoadSid)
+                                  : ffriga::loadScene(o.positional[0], ro.sid_paths, guardedLoadSid);
     if (ffriga::interruptRequested()) {
-      std::fprintf(stderr, "ffrsim: interrupted by %s while loading the scene; no result written\n",
-                   ffriga::interruptSignalName().c_str());
+      std::fprintf(stderr, "ffrsim: interrupted by %s while loading the scene; %s\n",
+                   ffriga::interruptSignalName().c_str(),
+                   restart ? "the result file is unchanged" : "no result written");
       return 1;
     }
     scene.settings.verbosity = o.verbosity;
-    ffriga::ResultWriter writer(o.output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
-                                scene.doc.text, scene.flush_rows, scene.flush_interval);
-    if (!scene.warnings.empty()) {
-      std::string all;
-      for (const std::string& w : scene.warnings) {
-        if (o.verbosity > 0) std::fprintf(stderr, "ffrsim: warning: %s\n", w.c_str());
-        all += (all.empty() ? "" : "\n") + w;
-      }
-      writer.setAttribute("warnings", all);
+    ffriga::ResultWriter writer(output, *scene.system, std::string("ffrsim ") + ffriga::kVersion,
+                                scene.doc.text, scene.flush_rows, scene.flush_interval,
+                                restart ? &record : nullptr);
+    if (restart) {
+      writer.setAttribute("restarts", record.restarts + 1);
+      writer.setAttribute("end_time_s", scene.settings.end_time);
+    } else {
+      writeRunAttributes(writer, scene, o.positional[0]);
+      writeModelAttributes(writer, scene, o.verbosity);
     }
-    if (scene.static_preload) {
-      writer.setAttribute("static_preload_iterations", static_cast<long>(scene.preload.iterations));
-      writer.setAttribute("static_preload_residual", scene.preload.residual);
-      writer.setAttribute("static_preload_elastic_force", scene.preload.elastic_force);
-    }
-    const ffriga::SimulationReport r =
-        ffriga::simulate(*scene.system, scene.y0, scene.settings, writer);
+    const ffriga::SimulationReport r = ffriga::simulate(*scene.system, scene.y0, scene.settings,
+                                                        writer, restart ? &record : nullptr);
     writer.close();
     if (o.verbosity > 0) printSummary(scene, r);
     if (r.interrupted) {
       std::fprintf(stderr, "ffrsim: %s; %s holds the results up to then\n", r.status.c_str(),
-                   o.output.c_str());
+                   output.c_str());
       return 1;
     }
     return 0;

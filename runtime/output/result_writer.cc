@@ -16,19 +16,26 @@ hid_t check(hid_t status, const std::string& what, const std::string& file) {
 
 ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& system,
                            const std::string& created_by, const std::string& scene_yaml,
-                           int flush_rows, double flush_interval)
+                           int flush_rows, double flush_interval, const RestartRecord* resume)
     : path_(path),
       flush_rows_(flush_rows),
       flush_interval_(flush_interval),
       last_flush_(std::chrono::steady_clock::now()) {
   h5::silenceErrors();
-  const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0) throw InputError(Str() << path << ": cannot create the result file");
+  appending_ = resume != nullptr;
+  const hid_t f = appending_ ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)
+                             : H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  if (f < 0) {
+    throw InputError(Str() << path << ": cannot " << (appending_ ? "open" : "create")
+                           << " the result file");
+  }
   file_ = Handle(f, H5Fclose);
-  setAttribute("format", std::string(kResultFormat));
-  setAttribute("format_version", static_cast<long>(kResultFormatVersion));
+  if (!appending_) {
+    setAttribute("format", std::string(kResultFormat));
+    setAttribute("format_version", static_cast<long>(kResultFormatVersion));
+    setAttribute("scene_yaml", scene_yaml);
+  }
   setAttribute("created_by", created_by);
-  setAttribute("scene_yaml", scene_yaml);
   setAttribute("status", std::string("running"));
   time_ = &create(f, "time", 0, "s", "output times");
   Handle bodies = group(f, "bodies");
@@ -84,7 +91,47 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
   force_elements_ = &create(energy.id(), "force_elements", 0, "J",
                             "potential energy of the force elements (springs, Hertz contact)");
   createMultibodySeries(system);
+  // The restart record: the state at the last row on disk, rewritten at every flush.
+  const int n = system.size();
+  if (appending_) {
+    restart_ = h5::openGroup(h5::Context{path_}, f, "restart");
+    restart_state_ = Handle(check(H5Dopen2(restart_.id(), "state", H5P_DEFAULT), "H5Dopen2 'state'",
+                                  path_),
+                            H5Dclose);
+    // Rows after the record's (written after its last flush, if any) are dropped.
+    rows_ = written_ = resume->rows;
+    for (auto& series : series_) {
+      const hsize_t dims[2] = {static_cast<hsize_t>(rows_), static_cast<hsize_t>(std::max(series->cols, 1))};
+      check(H5Dset_extent(series->dataset.id(), dims), "H5Dset_extent", path_);
+    }
+  } else {
+    restart_ = group(f, "restart");
+    const hsize_t dims[1] = {static_cast<hsize_t>(n)};
+    Handle space(check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple", path_), H5Sclose);
+    restart_state_ = Handle(check(H5Dcreate2(restart_.id(), "state", H5T_NATIVE_DOUBLE, space.id(),
+                                             H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                                  "H5Dcreate2 'state'", path_),
+                            H5Dclose);
+    h5::writeAttribute(h5::Context{path_}, restart_state_.id(), "unit", std::string("SI"));
+    h5::writeAttribute(h5::Context{path_}, restart_state_.id(), "description",
+                       std::string("full state vector y at the last row on disk (the layout of "
+                                   "MultibodySystem: positions, then velocities)"));
+    h5::writeAttribute(h5::Context{path_}, restart_.id(), "rows", 0.0);
+  }
   flush();
+}
+
+void ResultWriter::writeRestartRecord() {
+  if (!resume_pending_) return;
+  const h5::Context c{path_};
+  check(H5Dwrite(restart_state_.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                 resume_state_.data()),
+        "H5Dwrite 'restart/state'", path_);
+  h5::writeAttribute(c, restart_.id(), "time_s", resume_time_);
+  for (const auto& [name, value] : resume_figures_)
+    h5::writeAttribute(c, restart_.id(), "figure_" + name, value);
+  h5::writeAttribute(c, restart_.id(), "rows", static_cast<double>(rows_));
+  resume_pending_ = false;
 }
 
 void ResultWriter::createMultibodySeries(const MultibodySystem& system) {
@@ -178,6 +225,7 @@ ResultWriter::~ResultWriter() {
 }
 
 Handle ResultWriter::group(hid_t parent, const std::string& name) {
+  if (appending_) return h5::openGroup(h5::Context{path_}, parent, name);
   return Handle(check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                       "H5Gcreate2 '" + name + "'", path_),
                 H5Gclose);
@@ -189,6 +237,23 @@ ResultWriter::Series& ResultWriter::create(hid_t parent, const std::string& name
   auto s = std::make_unique<Series>();
   s->cols = cols;
   s->integer = integer;
+  if (appending_) {  // a restart: the dataset exists and must have this shape
+    s->dataset = Handle(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), H5Dclose);
+    int found = -1;
+    if (s->dataset.id() >= 0) {
+      Handle space(H5Dget_space(s->dataset.id()), H5Sclose);
+      hsize_t dims[2] = {0, 0};
+      const int rank = H5Sget_simple_extent_dims(space.id(), dims, nullptr);
+      found = rank == 1 ? 0 : rank == 2 ? static_cast<int>(dims[1]) : -2;
+    }
+    if (found != cols) {
+      throw InputError(Str() << path_ << ": dataset '" << name << "' "
+                             << (found == -1 ? "is missing" : "has another shape")
+                             << ": the file was not written by this scene");
+    }
+    series_.push_back(std::move(s));
+    return *series_.back();
+  }
   const int rank = cols == 0 ? 1 : 2;
   const hsize_t dims[2] = {0, static_cast<hsize_t>(cols)};
   const hsize_t maxdims[2] = {H5S_UNLIMITED, static_cast<hsize_t>(cols)};
@@ -295,6 +360,9 @@ void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& s
   appendRow(*gravity_, &e.gravity);
   appendMultibodyRows(y, system);
   ++rows_;
+  resume_time_ = t;
+  resume_state_ = y;
+  resume_pending_ = true;
   if (rows_ % flush_rows_ == 0)
     flush();
   else
@@ -311,6 +379,7 @@ void ResultWriter::flush() {
   if (file_.id() < 0) return;
   for (auto& series : series_) writePending(*series);
   written_ = rows_;
+  writeRestartRecord();
   check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
   last_flush_ = std::chrono::steady_clock::now();
 }

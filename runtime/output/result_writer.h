@@ -10,6 +10,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include <Eigen/Dense>
 
 #include "common/hdf5_io.h"
+#include "runtime/output/restart_record.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {
@@ -27,10 +29,12 @@ constexpr int kResultFormatVersion = 3;
 class ResultWriter {
  public:
   // Creates (truncates) `path`; writes the root attributes format, format_version,
-  // created_by, scene_yaml and status = "running", and the layout of `system`.
+  // created_by, scene_yaml and status = "running", and the layout of `system`. With
+  // `resume` (a restart, runtime/output/restart_record.h): opens the existing file instead,
+  // checks that its layout is the one of `system`, and drops every row after resume->rows.
   ResultWriter(const std::string& path, const MultibodySystem& system,
                const std::string& created_by, const std::string& scene_yaml, int flush_rows = 16,
-               double flush_interval = 2.0);
+               double flush_interval = 2.0, const RestartRecord* resume = nullptr);
   ~ResultWriter();
 
   // One output row at time t (s) for state y.
@@ -38,6 +42,9 @@ class ResultWriter {
   void flush();
   // Flushes if rows are pending and the last flush is flush_interval or more seconds ago.
   void flushIfDue();
+  // The run's figures so far (headline figures, statistics): written to the restart record
+  // at the next flush, with the state of the last appended row.
+  void setRunFigures(const std::map<std::string, double>& figures) { resume_figures_ = figures; }
   long rows() const { return rows_; }
   // Root attributes (replaced if present): status, wall_time_s, solver statistics, ...
   void setAttribute(const std::string& name, const std::string& value);
@@ -90,6 +97,13 @@ class ResultWriter {
          *force_elements_ = nullptr;
   void createMultibodySeries(const MultibodySystem& system);
   void appendMultibodyRows(const Eigen::VectorXd& y, MultibodySystem& system);
+  void writeRestartRecord();
+  bool appending_ = false;  // opened for a restart: groups and datasets exist
+  h5::Handle restart_, restart_state_;
+  bool resume_pending_ = false;  // a row was appended since the record was written
+  double resume_time_ = 0.0;
+  Eigen::VectorXd resume_state_;
+  std::map<std::string, double> resume_figures_;
   long rows_ = 0;
   int flush_rows_ = 16;
   double flush_interval_ = 2.0;  // s of wall time

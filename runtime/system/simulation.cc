@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <vector>
 
 #include "common/error.h"
@@ -93,10 +94,80 @@ void checkRepresentable(const MultibodySystem& system, double t) {
   }
 }
 
+IntegratorStats sumOf(const IntegratorStats& a, const IntegratorStats& b) {
+  IntegratorStats s = b;
+  s.steps += a.steps;
+  s.rhs_evals += a.rhs_evals;
+  s.jacobian_evals += a.jacobian_evals;
+  s.jacobian_rhs_evals += a.jacobian_rhs_evals;
+  s.linear_setups += a.linear_setups;
+  s.error_test_failures += a.error_test_failures;
+  s.nonlinear_iterations += a.nonlinear_iterations;
+  s.convergence_failures += a.convergence_failures;
+  return s;
+}
+
+// The figures a restart needs to continue the report (restart record, by name).
+std::map<std::string, double> runFigures(const SimulationReport& r, int phase, double wall) {
+  std::map<std::string, double> f = {
+      {"phase", phase},
+      {"wall_time_s", wall},
+      {"max_contact_force_N", r.max_normal_force},
+      {"contact_begin_s", r.contact_begin},
+      {"contact_end_s", r.contact_end},
+      {"steps", static_cast<double>(r.stats.steps)},
+      {"rhs_evals", static_cast<double>(r.stats.rhs_evals)},
+      {"jacobian_evals", static_cast<double>(r.stats.jacobian_evals)},
+      {"jacobian_rhs_evals", static_cast<double>(r.stats.jacobian_rhs_evals)},
+      {"linear_setups", static_cast<double>(r.stats.linear_setups)},
+      {"error_test_failures", static_cast<double>(r.stats.error_test_failures)},
+      {"nonlinear_iterations", static_cast<double>(r.stats.nonlinear_iterations)},
+      {"convergence_failures", static_cast<double>(r.stats.convergence_failures)}};
+  const PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
+  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
+  for (int i = 0; i < 3; ++i) {
+    f[std::string(names[i]) + "_wall_s"] = phases[i]->wall_s;
+    f[std::string(names[i]) + "_steps"] = static_cast<double>(phases[i]->steps);
+    f[std::string(names[i]) + "_rhs_evals"] = static_cast<double>(phases[i]->rhs_evals);
+  }
+  return f;
+}
+
+void restoreFigures(const RestartRecord& rec, SimulationReport& r, int& phase,
+                    IntegratorStats& stats, double& wall) {
+  auto get = [&](const std::string& name) {
+    const auto it = rec.figures.find(name);
+    return it == rec.figures.end() ? 0.0 : it->second;
+  };
+  auto count = [&](const std::string& name) { return std::lround(get(name)); };
+  phase = static_cast<int>(count("phase"));
+  wall = get("wall_time_s");
+  r.max_normal_force = get("max_contact_force_N");
+  r.contact_begin = rec.figures.count("contact_begin_s") ? get("contact_begin_s") : -1.0;
+  r.contact_end = rec.figures.count("contact_end_s") ? get("contact_end_s") : -1.0;
+  stats.steps = count("steps");
+  stats.rhs_evals = count("rhs_evals");
+  stats.jacobian_evals = count("jacobian_evals");
+  stats.jacobian_rhs_evals = count("jacobian_rhs_evals");
+  stats.linear_setups = count("linear_setups");
+  stats.error_test_failures = count("error_test_failures");
+  stats.nonlinear_iterations = count("nonlinear_iterations");
+  stats.convergence_failures = count("convergence_failures");
+  PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
+  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
+  for (int i = 0; i < 3; ++i) {
+    phases[i]->wall_s = get(std::string(names[i]) + "_wall_s");
+    phases[i]->steps = count(std::string(names[i]) + "_steps");
+    phases[i]->rhs_evals = count(std::string(names[i]) + "_rhs_evals");
+  }
+  r.stats = stats;
+}
+
 }  // namespace
 
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
-                          const SimulationSettings& settings, ResultWriter& writer) {
+                          const SimulationSettings& settings, ResultWriter& writer,
+                          const RestartRecord* resume) {
   FFRIGA_CHECK(
       settings.end_time > 0.0 && settings.output_interval > 0.0,
       "end time " << settings.end_time << ", output interval " << settings.output_interval);
@@ -104,7 +175,6 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
   const Clock::time_point start = Clock::now();
   Eigen::VectorXd y = y0;
   system.normalize(y.data());
-  writer.append(0.0, y, system);
   const long nOut =
       std::max(1L, std::lround(std::ceil(settings.end_time / settings.output_interval - 1e-9)));
   long nextOut = 1;
@@ -112,10 +182,20 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
     return std::min(settings.end_time, k * settings.output_interval);
   };
   int phase = 0;  // 0 before contact, 1 during, 2 after
-  Clock::time_point lastProgress = start;
   double t = 0.0;
+  IntegratorStats before;  // of the parts of the run before a restart
+  double wallBefore = 0.0;
+  if (resume) {
+    t = resume->time;
+    restoreFigures(*resume, report, phase, before, wallBefore);
+    // The next regular output strictly after the record's row.
+    nextOut = static_cast<long>(std::floor(t / settings.output_interval * (1.0 + 1e-12))) + 1;
+  } else {
+    writer.append(0.0, y, system);
+  }
+  Clock::time_point lastProgress = start;
   try {
-    BdfIntegrator integ(system, 0.0, y, settings.integrator);
+    BdfIntegrator integ(system, t, y, settings.integrator);
     integ.setStopTime(settings.end_time);
     IntegratorStats last;
     double tPrev = t;
@@ -187,7 +267,8 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       ps.rhs_evals +=
           (now.rhs_evals + now.jacobian_rhs_evals) - (last.rhs_evals + last.jacobian_rhs_evals);
       last = now;
-      report.stats = now;
+      report.stats = sumOf(before, now);
+      writer.setRunFigures(runFigures(report, phase, wallBefore + seconds(start, s1)));
       if (settings.verbosity > 0 && seconds(lastProgress, s1) >= settings.progress_interval) {
         lastProgress = s1;
         const double elapsed = seconds(start, s1);
@@ -204,7 +285,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       }
     }
     report.final_time = t;
-    report.wall_time_s = seconds(start, Clock::now());
+    report.wall_time_s = wallBefore + seconds(start, Clock::now());
     if (report.interrupted) {
       report.status = Str() << "interrupted by " << interruptSignalName() << " at t = " << t << " s";
     } else {
@@ -215,7 +296,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
     writer.flush();
   } catch (const std::exception& e) {
     report.final_time = t;
-    report.wall_time_s = seconds(start, Clock::now());
+    report.wall_time_s = wallBefore + seconds(start, Clock::now());
     report.status = Str() << "failed at t = " << t << " s: " << e.what();
     writeStatistics(writer, report);
     writer.close();

@@ -55,7 +55,11 @@ struct SimulationReport {
 
 // Runs from (0, y0) to settings.end_time. Integration failures are recorded in the file and
 // the report (completed = false) and rethrown as ComputeError after the file is closed.
+// With `resume` (a restart): from (resume->time, y0 = resume->state) instead, the report's
+// figures and statistics continued from the record, no row written at the start (the
+// writer was opened on the record's file).
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
-                          const SimulationSettings& settings, ResultWriter& writer);
+                          const SimulationSettings& settings, ResultWriter& writer,
+                          const RestartRecord* resume = nullptr);
 
 }  // namespace ffriga

@@ -1,7 +1,8 @@
 """Batch-scheduler signals (issue 13), on a ~10 s run of the Sect. 5 impact (sphere2d_h3 with
 steps limited to 6 ns; the result flushed by wall time only: flush_interval 1 s, flush_rows
 too large to matter):
-  * SIGTERM and SIGHUP at a random moment: exit code 1, the file opens, its status says
+  * SIGTERM and SIGHUP at a random moment (a random fraction of the run, told by its
+    progress lines, so that the moment is inside the run on any machine): exit code 1, the file opens, its status says
     which signal and when, and it holds every row up to then, equal bit for bit to the rows
     of the uninterrupted run (same input, same bits);
   * SIGKILL at a random moment: the file opens (status still `running`), its rows are a
@@ -58,12 +59,19 @@ def start(result, preexec=None):
                             stderr=subprocess.PIPE, text=True, preexec_fn=preexec)
 
 
-def progress_reader(proc, lines):
-    """Collects (arrival time, simulated time) of the progress lines."""
+def progress_reader(proc, lines, at_fraction=None, sig=None):
+    """Collects (arrival time, simulated time) of the progress lines; with at_fraction,
+    sends `sig` as soon as the run has passed that fraction of its end time (a random moment
+    of the run whatever the machine's speed or load)."""
+    sent = False
     for line in proc.stderr:
         m = re.match(r"ffrsim: t = ([0-9.e+-]+) s", line)
         if m:
             lines.append((time.monotonic(), float(m.group(1))))
+            if at_fraction is not None and not sent and float(m.group(1)) >= at_fraction * 1e-4:
+                lines.append((time.monotonic(), None))  # the moment of the signal
+                proc.send_signal(sig)
+                sent = True
 
 
 # The uninterrupted reference.
@@ -85,46 +93,36 @@ def prefix_of_reference(t, f, what):
     check(same, f"{what}: its {n} rows equal the reference's first {n}, bit for bit")
 
 
-for sig in (signal.SIGTERM, signal.SIGHUP):
+for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGKILL):
     name = signal.Signals(sig).name
     result = os.path.join(out, f"{name}.h5")
-    delay = rng.uniform(0.1, 0.8) * wall
+    fraction = rng.uniform(0.4 if sig == signal.SIGKILL else 0.1, 0.8)  # a kill after > 3 s
     proc = start(result)
     lines = []
-    reader = threading.Thread(target=progress_reader, args=(proc, lines))
+    reader = threading.Thread(target=progress_reader, args=(proc, lines, fraction, sig))
     reader.start()
-    time.sleep(delay)
-    proc.send_signal(sig)
     rc = proc.wait()
     reader.join()
     status, t, f = rows_of(result)
-    m = re.match(rf"interrupted by {name} at t = ([0-9.e+-]+) s", status)
-    t_stop = float(m.group(1)) if m else -1.0
-    expected = int(np.floor(t_stop / 1e-7 * (1 + 1e-12))) + 1 if m else -1
-    check(rc == 1 and m is not None, f"{name} after {delay:.2f} s: exit {rc}, status '{status}'")
-    check(len(t) == expected and t[-1] <= t_stop,
-          f"{name}: {len(t)} rows, every output up to t = {t_stop:.6g} s ({expected})")
+    moment = f"at {100 * fraction:.0f} % of the run"
+    if sig != signal.SIGKILL:
+        m = re.match(rf"interrupted by {name} at t = ([0-9.e+-]+) s", status)
+        t_stop = float(m.group(1)) if m else -1.0
+        expected = int(np.floor(t_stop / 1e-7 * (1 + 1e-12))) + 1 if m else -1
+        check(rc == 1 and m is not None, f"{name} {moment}: exit {rc}, status '{status}'")
+        check(len(t) == expected and t[-1] <= t_stop,
+              f"{name}: {len(t)} rows, every output up to t = {t_stop:.6g} s ({expected})")
+    else:
+        # Nothing can be done at a kill; what was flushed must be readable: every row older
+        # than the flush interval (plus 0.5 s of margin for a slow step) at the kill.
+        killed_at = next(arrival for arrival, sim in lines if sim is None)
+        older = [sim for arrival, sim in lines
+                 if sim is not None and arrival <= killed_at - FLUSH_INTERVAL - 0.5]
+        needed = max(older) if older else 0.0
+        check(status == "running" and needed > 0.0 and t[-1] >= needed * (1 - 1e-12),
+              f"SIGKILL {moment}: status '{status}', {len(t)} rows up to t = {t[-1]:.6g} s, at "
+              f"least up to {needed:.6g} s (computed {FLUSH_INTERVAL} + 0.5 s before the kill)")
     prefix_of_reference(t, f, name)
-
-# SIGKILL: nothing can be done at the kill; what was flushed must be readable.
-result = os.path.join(out, "SIGKILL.h5")
-delay = rng.uniform(0.3, 0.8) * wall
-proc = start(result)
-lines = []
-reader = threading.Thread(target=progress_reader, args=(proc, lines))
-reader.start()
-time.sleep(delay)
-killed_at = time.monotonic()
-proc.kill()
-proc.wait()
-reader.join()
-status, t, f = rows_of(result)
-older = [sim for arrival, sim in lines if arrival <= killed_at - FLUSH_INTERVAL - 0.5]
-needed = max(older) if older else 0.0
-check(status == "running" and len(t) > 0 and t[-1] >= needed * (1 - 1e-12),
-      f"SIGKILL after {delay:.2f} s: status '{status}', {len(t)} rows up to t = {t[-1]:.6g} s, "
-      f"at least up to {needed:.6g} s (computed {FLUSH_INTERVAL} + 0.5 s before the kill)")
-prefix_of_reference(t, f, "SIGKILL")
 
 
 # SIGTERM before ffrsim runs: blocked by the launcher, pending, delivered at the handler.

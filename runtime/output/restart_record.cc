@@ -1,0 +1,58 @@
+#include "runtime/output/restart_record.h"
+
+#include <sstream>
+
+#include "common/error.h"
+#include "common/hdf5_io.h"
+#include "runtime/output/result_writer.h"
+
+namespace ffriga {
+
+RestartRecord readRestartRecord(const std::string& path) {
+  h5::silenceErrors();
+  const h5::Context c{path, true};
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw InputError(Str() << path << ": cannot open as an HDF5 result file");
+  h5::Handle file(f, H5Fclose);
+  if (!H5Aexists(f, "format") || h5::readStringAttribute(c, f, "format") != kResultFormat) {
+    throw InputError(Str() << path << ": not a result file of ffrsim (root attribute 'format' is "
+                           << "not '" << kResultFormat << "')");
+  }
+  const int version = h5::readIntAttribute(c, f, "format_version");
+  if (version != kResultFormatVersion) {
+    throw InputError(Str() << path << ": result format version " << version << ", this ffrsim "
+                           << "restarts version " << kResultFormatVersion << " only");
+  }
+  if (!h5::exists(f, "restart") || !H5Aexists(f, "scene_path")) {
+    throw InputError(Str() << path << ": the file holds no restart record (the run stopped "
+                           << "before its first flush)");
+  }
+  RestartRecord r;
+  r.status = h5::readStringAttribute(c, f, "status");
+  r.scene_yaml = h5::readStringAttribute(c, f, "scene_yaml");
+  r.scene_path = h5::readStringAttribute(c, f, "scene_path");
+  r.end_time = h5::readDoubleAttribute(c, f, "end_time_s");
+  r.restarts = H5Aexists(f, "restarts") ? h5::readIntAttribute(c, f, "restarts") : 0;
+  std::istringstream sids(h5::readStringAttribute(c, f, "sid_files"));
+  for (std::string line; std::getline(sids, line);)
+    if (!line.empty()) r.sid_files.push_back(line);
+  h5::Handle g = h5::openGroup(c, f, "restart");
+  r.time = h5::readDoubleAttribute(c, g.id(), "time_s");
+  r.rows = static_cast<long>(h5::readDoubleAttribute(c, g.id(), "rows"));
+  if (r.rows < 1) throw InputError(Str() << path << ": the restart record holds no row yet");
+  r.state = h5::readVector(c, g.id(), "state");
+  const int n = static_cast<int>(H5Aget_num_attrs(g.id()));
+  for (int i = 0; i < n; ++i) {
+    char name[256];
+    h5::Handle a(H5Aopen_by_idx(g.id(), ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT,
+                                H5P_DEFAULT),
+                 H5Aclose);
+    if (a.id() < 0 || H5Aget_name(a.id(), sizeof name, name) < 0) continue;
+    const std::string key(name);
+    if (key.rfind("figure_", 0) == 0)
+      r.figures[key.substr(7)] = h5::readDoubleAttribute(c, g.id(), key);
+  }
+  return r;
+}
+
+}  // namespace ffriga

@@ -1,0 +1,156 @@
+"""Restart (issue 13): `ffrsim --restart RESULT.h5` continues a run from the restart record of
+its file (the state at the last row on disk) and appends to the same file.
+
+  1. The rigid double pendulums of Sect. 7 (Hertz point contact), tolerances tightened to
+     rtol 1e-11 and steps limited to 2 us (a run of several seconds), stopped by SIGTERM at a
+     random moment and restarted: the final state equals the uninterrupted run's within 1e-8
+     relative (2-norm of the state vector; measured 3e-11 to 3e-9: CVODE restarts at order 1,
+     so the two runs differ by their integration errors, ~rtol times a growth factor), the force
+     history within 1e-8 of its peak, and the output times are exactly the reference's (no
+     gap, no duplicate row, the contact rows of contact_output_interval included).
+  2. The Sect. 5 impact (sphere2d_h3, default tolerances rtol 1e-6) killed by SIGKILL at a
+     random moment and restarted: rows before the record bit for bit the reference's, the
+     same output times, force peak and contact duration within 1e-3 relative (measured
+     1e-5: the peak is the largest force over the steps, and the runs step differently after
+     the restart; 1e-3 is 3 times below the 0.3 % the Sect. 5 acceptance asks).
+  3. A finished run continued with --end-time: rows appended after the old end, status
+     completed, end_time_s updated; a finished run without --end-time, a file that is not a
+     result and --restart with -o are refused with exit code 2.
+
+usage: check_restart.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
+"""
+import os
+import random
+import signal
+import subprocess
+import sys
+import time
+
+import h5py
+import numpy as np
+
+from result_checks import Checks
+
+igaprep, ffrsim, source, out = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+check = Checks()
+seed = int(time.time())
+rng = random.Random(seed)
+print(f"random moments from seed {seed}")
+
+
+def text_of(name, replacements):
+    with open(os.path.join(source, "configs", "scenes", name + ".yaml")) as f:
+        text = f.read()
+    for old, new in replacements:
+        assert old in text, old
+        text = text.replace(old, new)
+    path = os.path.join(out, name + "_restart.yaml")
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def attr(f, name):
+    v = f.attrs[name]
+    return v.decode() if isinstance(v, bytes) else v
+
+
+def reference(scene, result):
+    if os.path.exists(result):
+        os.remove(result)
+    t0 = time.monotonic()
+    subprocess.run([ffrsim, "-q", scene, "-o", result], check=True)
+    return time.monotonic() - t0
+
+
+def interrupted(scene, result, delay, sig):
+    if os.path.exists(result):
+        os.remove(result)
+    proc = subprocess.Popen([ffrsim, "-q", scene, "-o", result], stderr=subprocess.DEVNULL)
+    time.sleep(delay)
+    proc.send_signal(sig)
+    proc.wait()
+    with h5py.File(result, "r") as f:
+        return attr(f, "status"), float(f["restart"].attrs["time_s"])
+
+
+def restart(result, *extra):
+    return subprocess.run([ffrsim, "-q", "--restart", result, *extra], capture_output=True,
+                          text=True)
+
+
+# 1. Rigid pendulums, tight tolerances, SIGTERM.
+scene = text_of("pendulums_rigid", [
+    ("rtol: 1.0e-8", "rtol: 1.0e-11\n  max_step: 2.0e-6"),
+    ("atol_position: 1.0e-12", "atol_position: 1.0e-15"),
+    ("atol_velocity: 1.0e-9", "atol_velocity: 1.0e-12"),
+    ("atol_rotation: 1.0e-11", "atol_rotation: 1.0e-14"),
+    ("atol_angular_velocity: 1.0e-8", "atol_angular_velocity: 1.0e-11")])
+ref = os.path.join(out, "pendulums_reference.h5")
+wall = reference(scene, ref)
+part = os.path.join(out, "pendulums_restarted.h5")
+delay = rng.uniform(0.2, 0.8) * wall
+status, t_record = interrupted(scene, part, delay, signal.SIGTERM)
+r = restart(part)
+with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
+    ya, yb = a["restart/state"][()], b["restart/state"][()]
+    ta, tb = a["time"][()], b["time"][()]
+    fa = a["force_elements/impact/tension"][()]
+    fb = b["force_elements/impact/tension"][()]
+    rel = np.linalg.norm(ya - yb) / np.linalg.norm(ya)
+    force = np.max(np.abs(fa - fb)) / np.max(np.abs(fa))
+    check(r.returncode == 0 and attr(b, "status") == "completed" and b.attrs["restarts"] == 1,
+          f"pendulums: {status} after {delay:.2f} s (record at t = {t_record:.6g} s), restarted: "
+          f"{attr(b, 'status')}")
+    check(np.array_equal(ta, tb) and np.all(np.diff(tb) > 0),
+          f"pendulums: {len(tb)} rows at exactly the reference's times (no gap, no duplicate)")
+    check(rel < 1e-8, f"pendulums: final state within {rel:.2e} relative of the uninterrupted run")
+    check(force < 1e-8, f"pendulums: force history within {force:.2e} of its peak")
+
+# 2. The Sect. 5 impact, SIGKILL (the record is what the last flush left).
+subprocess.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"),
+                "-o", os.path.join(out, "sphere2d_h3.sid.h5")], check=True)
+scene = text_of("impact2d_h3", [("flush_rows: 100", "flush_rows: 50\n  flush_interval: 0.2")])
+ref = os.path.join(out, "impact_reference.h5")
+wall = reference(scene, ref)
+part = os.path.join(out, "impact_restarted.h5")
+delay = rng.uniform(0.3, 0.8) * wall
+status, t_record = interrupted(scene, part, delay, signal.SIGKILL)
+with h5py.File(part, "r") as f:
+    rows_before = int(f["restart"].attrs["rows"])
+r = restart(part)
+with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
+    ta, tb = a["time"][()], b["time"][()]
+    fa = a["contacts/impact/normal_force"][()]
+    fb = b["contacts/impact/normal_force"][()]
+    same_prefix = np.array_equal(fa[:rows_before], fb[:rows_before])
+    peak = b.attrs["max_contact_force_N"] / a.attrs["max_contact_force_N"] - 1.0
+    da = a.attrs["contact_end_s"] - a.attrs["contact_begin_s"]
+    db = b.attrs["contact_end_s"] - b.attrs["contact_begin_s"]
+    check(r.returncode == 0 and attr(b, "status") == "completed",
+          f"impact: '{status}' killed after {delay:.2f} s, record at t = {t_record:.6g} s "
+          f"({rows_before} rows), restarted: {attr(b, 'status')}")
+    check(np.array_equal(ta, tb) and same_prefix,
+          f"impact: {len(tb)} rows at the reference's times, the first {rows_before} bit for bit")
+    check(abs(peak) < 1e-3 and abs(db / da - 1.0) < 1e-3,
+          f"impact: force peak {peak:+.2e}, contact duration {db / da - 1.0:+.2e} relative to the "
+          f"uninterrupted run")
+
+# 3. Continue a finished run; refusals.
+r = restart(ref, "--end-time", "1.5e-4")
+with h5py.File(ref, "r") as f:
+    t = f["time"][()]
+    check(r.returncode == 0 and attr(f, "status") == "completed" and abs(t[-1] - 1.5e-4) < 1e-15
+          and len(t) == 1501 and np.all(np.diff(t) > 0) and f.attrs["end_time_s"] == 1.5e-4,
+          f"finished run continued to 1.5e-4 s: {len(t)} rows, status {attr(f, 'status')}")
+r = restart(ref)
+check(r.returncode == 2 and "nothing to continue" in r.stderr,
+      f"finished run without --end-time: exit {r.returncode}: {r.stderr.strip()}")
+r = restart(os.path.join(out, "sphere2d_h3.sid.h5"))
+check(r.returncode == 2 and "not a result file" in r.stderr,
+      f"a SID file: exit {r.returncode}: {r.stderr.strip()}")
+r = subprocess.run([ffrsim, "--restart", ref, "-o", part], capture_output=True, text=True)
+check(r.returncode == 2 and "--restart takes the result file only" in r.stderr,
+      f"--restart with -o: exit {r.returncode}: {r.stderr.strip()}")
+check.exit()
