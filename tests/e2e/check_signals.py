@@ -21,13 +21,12 @@ import re
 import signal
 import subprocess
 import sys
-import threading
 import time
 
 import h5py
 import numpy as np
 
-from result_checks import Checks
+from result_checks import Checks, signal_at_fraction
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -59,21 +58,6 @@ def start(result, preexec=None):
                             stderr=subprocess.PIPE, text=True, preexec_fn=preexec)
 
 
-def progress_reader(proc, lines, at_fraction=None, sig=None):
-    """Collects (arrival time, simulated time) of the progress lines; with at_fraction,
-    sends `sig` as soon as the run has passed that fraction of its end time (a random moment
-    of the run whatever the machine's speed or load)."""
-    sent = False
-    for line in proc.stderr:
-        m = re.match(r"ffrsim: t = ([0-9.e+-]+) s", line)
-        if m:
-            lines.append((time.monotonic(), float(m.group(1))))
-            if at_fraction is not None and not sent and float(m.group(1)) >= at_fraction * 1e-4:
-                lines.append((time.monotonic(), None))  # the moment of the signal
-                proc.send_signal(sig)
-                sent = True
-
-
 # The uninterrupted reference.
 t0 = time.monotonic()
 ref = os.path.join(out, "reference.h5")
@@ -97,12 +81,7 @@ for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGKILL):
     name = signal.Signals(sig).name
     result = os.path.join(out, f"{name}.h5")
     fraction = rng.uniform(0.4 if sig == signal.SIGKILL else 0.1, 0.8)  # a kill after > 3 s
-    proc = start(result)
-    lines = []
-    reader = threading.Thread(target=progress_reader, args=(proc, lines, fraction, sig))
-    reader.start()
-    rc = proc.wait()
-    reader.join()
+    rc, lines = signal_at_fraction([ffrsim, "-v", scene, "-o", result], 1e-4, fraction, sig)
     status, t, f = rows_of(result)
     moment = f"at {100 * fraction:.0f} % of the run"
     if sig != signal.SIGKILL:

@@ -19,3 +19,35 @@ class Checks:
 
     def exit(self):
         sys.exit(1 if self.failures else 0)
+
+
+def signal_at_fraction(cmd, end_time, fraction, sig):
+    """Runs `cmd` (an ffrsim run with -v, so that it prints progress lines), sends `sig` as
+    soon as the run has passed `fraction` of `end_time` (a random moment of the run on any
+    machine, loaded or not) and waits for it. Returns the exit code and the progress as
+    (arrival time, simulated time) pairs, the moment of the signal as (time, None)."""
+    import re
+    import subprocess
+    import threading
+    import time
+
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    lines = []
+
+    def read():
+        sent = False
+        for line in proc.stderr:
+            m = re.match(r"ffrsim: t = ([0-9.e+-]+) s", line)
+            if not m:
+                continue
+            lines.append((time.monotonic(), float(m.group(1))))
+            if not sent and float(m.group(1)) >= fraction * end_time:
+                lines.append((time.monotonic(), None))
+                proc.send_signal(sig)
+                sent = True
+
+    reader = threading.Thread(target=read)
+    reader.start()
+    rc = proc.wait()
+    reader.join()
+    return rc, lines
