@@ -101,11 +101,29 @@ std::size_t editDistance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
-bool sameScalar(const YAML::Node& a, const YAML::Node& b) {
-  if (!a.IsScalar() || !b.IsScalar()) return false;
-  double x, y;
-  if (isNumber(a, &x) && isNumber(b, &y)) return x == y;
-  return a.Scalar() == b.Scalar();
+// JSON equality, for enum and const (2020-12 Core Sect. 4.2.2): null equals null, numbers
+// compare by value (1 == 1.0) and never equal a string ("1" != 1), lists item by item,
+// mappings key by key in any order.
+bool sameValue(const YAML::Node& a, const YAML::Node& b) {
+  if (a.Type() != b.Type()) return false;
+  if (a.IsNull()) return true;
+  if (a.IsScalar()) {
+    double x, y;
+    const bool na = isNumber(a, &x), nb = isNumber(b, &y);
+    if (na || nb) return na && nb && x == y;
+    return a.Scalar() == b.Scalar();
+  }
+  if (a.size() != b.size()) return false;
+  if (a.IsSequence()) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!sameValue(a[i], b[i])) return false;
+    return true;
+  }
+  for (const auto& kv : a) {
+    const YAML::Node other = b[kv.first.Scalar()];
+    if (!other || !sameValue(kv.second, other)) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -167,8 +185,15 @@ void JsonSchema::validate(const YamlDocument& doc) const {
 void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, const YAML::Node& node,
                        const YAML::Node& parent, const std::string& key) const {
   const YAML::Node schema = resolve(schemaIn);
-  if (!schema.IsMap()) return;  // `true` schema
   const YAML::Node& where = node.IsDefined() ? node : parent;
+  if (!schema.IsMap()) {  // boolean schema: `true` accepts anything, `false` nothing
+    bool accept = true;
+    if (schema.IsScalar() && YAML::convert<bool>::decode(schema, accept) && !accept) {
+      throw inputError(doc, where, key,
+                       Str() << "no value allowed here, found " << describeNode(node));
+    }
+    return;
+  }
 
   if (const YAML::Node t = schema["type"]) {
     std::vector<std::string> types;
@@ -190,7 +215,7 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
   }
 
   if (const YAML::Node c = schema["const"]) {
-    if (!sameScalar(c, node)) {
+    if (!sameValue(c, node)) {
       throw inputError(doc, where, key,
                        Str() << "expected " << c.Scalar() << ", found " << describeNode(node));
     }
@@ -199,7 +224,7 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
     bool ok = false;
     Str allowed;
     for (std::size_t i = 0; i < e.size(); ++i) {
-      ok = ok || sameScalar(e[i], node);
+      ok = ok || sameValue(e[i], node);
       allowed << (i ? ", " : "") << e[i].Scalar();
     }
     if (!ok) {
@@ -301,9 +326,10 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
     std::string discriminator;
     for (const auto& branch : one) {
       const YAML::Node b = resolve(branch);
-      if (!b["properties"]) continue;
+      if (!b.IsMap() || !b["properties"]) continue;
       for (const auto& p : b["properties"]) {
-        if (resolve(p.second)["const"]) discriminator = p.first.Scalar();
+        const YAML::Node ps = resolve(p.second);
+        if (ps.IsMap() && ps["const"]) discriminator = p.first.Scalar();
       }
     }
     if (!discriminator.empty() && node.IsMap()) {
@@ -313,7 +339,7 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
         const YAML::Node b = resolve(one[i]);
         const YAML::Node c = resolve(b["properties"][discriminator])["const"];
         allowed << (i ? ", " : "") << c.Scalar();
-        if (tag && sameScalar(c, tag)) {
+        if (tag && sameValue(c, tag)) {
           check(doc, b, node, parent, key);
           return;
         }
@@ -322,24 +348,33 @@ void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, cons
           doc, tag ? tag : where, join(key, discriminator),
           Str() << "expected one of " << allowed.str() << "; found " << describeNode(tag));
     }
-    // Otherwise the first branch that accepts the node; if none does, the error of the
+    // Otherwise exactly one branch must accept the node; if none does, the error of the
     // first branch whose type is the node's kind (a mapping against the object branch), so
     // that the message names the offending inner key rather than "expected a boolean".
     std::string firstError, kindError;
-    for (const auto& branch : one) {
+    int accepted = -1;
+    for (int i = 0; i < static_cast<int>(one.size()); ++i) {
       try {
-        check(doc, branch, node, parent, key);
-        return;
+        check(doc, one[i], node, parent, key);
       } catch (const InputError& e) {
         if (firstError.empty()) firstError = e.what();
-        const YAML::Node type = resolve(branch)["type"];
+        const YAML::Node b = resolve(one[i]);
+        const YAML::Node type = b.IsMap() ? b["type"] : YAML::Node();
         const bool sameKind = type && type.IsScalar() &&
                               ((type.Scalar() == "object") == node.IsMap()) &&
                               ((type.Scalar() == "array") == node.IsSequence());
         if (sameKind && kindError.empty()) kindError = e.what();
+        continue;
       }
+      if (accepted >= 0) {
+        throw inputError(doc, where, key,
+                         Str() << "matches alternatives " << accepted + 1 << " and " << i + 1
+                               << " of a oneOf, expected exactly one; found "
+                               << describeNode(node));
+      }
+      accepted = i;
     }
-    throw InputError(kindError.empty() ? firstError : kindError);
+    if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
   }
 }
 
