@@ -78,11 +78,20 @@ class ApproachControl {
 };
 
 // A penetration the contact surfaces cannot represent (ContactState::beyond_edge_penetration)
-// stops the run: its force would be missing, and the result would look fine.
+// or a point near the other surface whose closest point could not be found stops the run:
+// its force would be missing, and the result would look fine.
 void checkRepresentable(const MultibodySystem& system, double t) {
   const std::vector<ContactState>& states = system.lastRhsContacts();
   for (int c = 0; c < static_cast<int>(states.size()); ++c) {
     const ContactPair& pair = system.contact(c);
+    if (states[c].projection_failures > 0) {
+      throw ComputeError(Str() << "contact '" << pair.name() << "': at t = " << t << " s the "
+                               << "closest-point search (Eq. 15) failed for "
+                               << states[c].projection_failures << " collocation point(s) near "
+                               << "the other surface (bodies '" << system.body(pair.bodyA()).name()
+                               << "' and '" << system.body(pair.bodyB()).name() << "'): their "
+                               << "contact forces cannot be computed");
+    }
     if (states[c].beyond_edge_penetration <= pair.penetrationTolerance()) continue;
     throw ComputeError(Str() << "contact '" << pair.name() << "': at t = " << t << " s a point "
                              << "penetrates by " << states[c].beyond_edge_penetration
