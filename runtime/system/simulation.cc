@@ -172,6 +172,67 @@ void restoreFigures(const RestartRecord& rec, SimulationReport& r, int& phase,
   r.stats = stats;
 }
 
+// Phase bookkeeping (paper Table 3): whether the bodies touch at the end of the step, as
+// the step's last right-hand side saw it (MultibodySystem::lastRhsContacts, the Hertz point
+// contacts' forces); the largest force so far goes into the report.
+bool contactAtStepEnd(const MultibodySystem& system, SimulationReport& report) {
+  bool contact = false;
+  for (const ContactState& s : system.lastRhsContacts()) {
+    contact = contact || s.active_points > 0;
+    report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
+  }
+  for (int f = 0; f < system.numLineForces(); ++f) {
+    if (!system.lineForce(f).isContact()) continue;
+    const double force = -system.lastRhsLineForces()[f].tension;
+    contact = contact || force > 0.0;
+    report.max_normal_force = std::max(report.max_normal_force, force);
+  }
+  return contact;
+}
+
+// In a step (tPrev, t] that begins or ends in contact, also every multiple of the contact
+// output interval dtc (> 0) that is not a regular output already; `times` stays sorted.
+void addContactOutputs(double dtc, bool in_contact, double tPrev, double t,
+                       std::vector<double>& times) {
+  if (!(dtc > 0.0) || !in_contact) return;
+  for (long k = static_cast<long>(std::floor(tPrev / dtc)) + 1; k * dtc <= t; ++k) {
+    bool regular = false;
+    for (double r : times) regular = regular || std::abs(r - k * dtc) <= 1e-9 * dtc;
+    if (k * dtc > tPrev && !regular) times.push_back(k * dtc);
+  }
+  std::sort(times.begin(), times.end());
+}
+
+// The output rows inside the last step, by interpolation (CVodeGetDky); y is scratch.
+void writeOutputs(BdfIntegrator& integ, MultibodySystem& system, ResultWriter& writer,
+                  const std::vector<double>& times, double t, Eigen::VectorXd& y) {
+  for (const double to : times) {
+    integ.interpolate(std::min(to, t), y);
+    // The interpolant leaves the constraint manifold by about the local error: an output
+    // row is projected onto it like every step's state.
+    if (system.hasConstraints() && !system.projectState(y.data())) {
+      throw ComputeError(Str() << "projecting the output at t = " << to << " s onto the joints' "
+                               << "constraints and the quasi-static manifold did not converge");
+    }
+    system.normalize(y.data());
+    writer.append(to, y, system);
+  }
+}
+
+void printProgress(const SimulationSettings& settings, double t, const IntegratorStats& now,
+                   double elapsed) {
+  const double left = t > 0.0 ? elapsed * (settings.end_time - t) / t : 0.0;
+  std::fprintf(stderr, "ffrsim: t = %.6g s (%.1f %%), %ld steps, %.1f s elapsed, ~%.1f s left\n",
+               t, 100.0 * t / settings.end_time, now.steps, elapsed, left);
+  if (settings.verbosity > 1) {
+    std::fprintf(stderr,
+                 "ffrsim:   step %.3g s, order %d, %ld error-test and %ld convergence failures, "
+                 "%ld Jacobians, %ld Newton iterations\n",
+                 now.last_step, now.last_order, now.error_test_failures, now.convergence_failures,
+                 now.jacobian_evals, now.nonlinear_iterations);
+  }
+}
+
 }  // namespace
 
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
@@ -222,44 +283,13 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       const Clock::time_point s0 = Clock::now();
       if (approach.active()) approach.update(integ, t);
       t = integ.step();
-      // Phase bookkeeping (paper Table 3): contact state at the end of the step, as the
-      // step's last right-hand side saw it (MultibodySystem::lastRhsContacts).
-      bool contact = false;
-      for (const ContactState& s : system.lastRhsContacts()) {
-        contact = contact || s.active_points > 0;
-        report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
-      }
+      const bool contact = contactAtStepEnd(system, report);
       checkRepresentable(system, t);
-      for (int f = 0; f < system.numLineForces(); ++f) {  // Hertz point contacts
-        if (!system.lineForce(f).isContact()) continue;
-        const double force = -system.lastRhsLineForces()[f].tension;
-        contact = contact || force > 0.0;
-        report.max_normal_force = std::max(report.max_normal_force, force);
-      }
-      // Outputs inside this step, by interpolation: the regular ones and, in a step that
-      // begins or ends in contact, every multiple of the contact output interval.
-      std::vector<double> times;
+      std::vector<double> times;  // the regular outputs inside this step
       while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14))
         times.push_back(outputTime(nextOut++));
-      const double dtc = settings.contact_output_interval;
-      if (dtc > 0.0 && (contact || phase == 1)) {
-        for (long k = static_cast<long>(std::floor(tPrev / dtc)) + 1; k * dtc <= t; ++k) {
-          bool regular = false;
-          for (double r : times) regular = regular || std::abs(r - k * dtc) <= 1e-9 * dtc;
-          if (k * dtc > tPrev && !regular) times.push_back(k * dtc);
-        }
-        std::sort(times.begin(), times.end());
-      }
-      for (const double to : times) {
-        integ.interpolate(std::min(to, t), y);
-        // The interpolant leaves the constraint manifold by about the local error: an
-        // output row is projected onto it like every step's state.
-        if (system.hasConstraints() && !system.projectState(y.data()))
-          throw ComputeError(Str() << "projecting the output at t = " << to
-                                   << " s onto the joints' constraints and the quasi-static manifold did not converge");
-        system.normalize(y.data());
-        writer.append(to, y, system);
-      }
+      addContactOutputs(settings.contact_output_interval, contact || phase == 1, tPrev, t, times);
+      writeOutputs(integ, system, writer, times, t, y);
       if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
       if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
       if (contact)
@@ -280,17 +310,7 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       writer.setRunFigures(runFigures(report, phase, wallBefore + seconds(start, s1)));
       if (settings.verbosity > 0 && seconds(lastProgress, s1) >= settings.progress_interval) {
         lastProgress = s1;
-        const double elapsed = seconds(start, s1);
-        const double left = t > 0.0 ? elapsed * (settings.end_time - t) / t : 0.0;
-        std::fprintf(stderr,
-                     "ffrsim: t = %.6g s (%.1f %%), %ld steps, %.1f s elapsed, ~%.1f s left\n", t,
-                     100.0 * t / settings.end_time, now.steps, elapsed, left);
-        if (settings.verbosity > 1)
-          std::fprintf(stderr,
-                       "ffrsim:   step %.3g s, order %d, %ld error-test and %ld convergence "
-                       "failures, %ld Jacobians, %ld Newton iterations\n",
-                       now.last_step, now.last_order, now.error_test_failures,
-                       now.convergence_failures, now.jacobian_evals, now.nonlinear_iterations);
+        printProgress(settings, t, now, seconds(start, s1));
       }
     }
     report.final_time = t;
