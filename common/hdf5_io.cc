@@ -100,11 +100,12 @@ void writeArray(const Context& c, hid_t parent, const std::string& name,
 }
 
 void writeMatrix(const Context& c, hid_t parent, const std::string& name, const Eigen::MatrixXd& m,
-                 const std::string& units) {
+                 const std::string& units, bool single) {
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   const RowMajor r = m;
   writeRaw(c, parent, name, {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())},
-           H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, r.size() ? r.data() : nullptr, units);
+           H5T_NATIVE_DOUBLE, single ? H5T_IEEE_F32LE : H5T_IEEE_F64LE,
+           r.size() ? r.data() : nullptr, units);
 }
 
 void writeVector(const Context& c, hid_t parent, const std::string& name, const Eigen::VectorXd& v,
@@ -116,6 +117,14 @@ void writeVector(const Context& c, hid_t parent, const std::string& name, const 
 void writeInts(const Context& c, hid_t parent, const std::string& name, const std::vector<int>& v) {
   writeRaw(c, parent, name, {static_cast<hsize_t>(v.size())}, H5T_NATIVE_INT, H5T_STD_I32LE,
            v.empty() ? nullptr : v.data(), "");
+}
+
+void writeIntMatrix(const Context& c, hid_t parent, const std::string& name,
+                    const Eigen::MatrixXi& m) {
+  using RowMajor = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajor r = m;
+  writeRaw(c, parent, name, {static_cast<hsize_t>(m.rows()), static_cast<hsize_t>(m.cols())},
+           H5T_NATIVE_INT, H5T_STD_I32LE, r.size() ? r.data() : nullptr, "");
 }
 
 void writeScalar(const Context& c, hid_t parent, const std::string& name, double v,
@@ -170,6 +179,20 @@ std::vector<int> readInts(const Context& c, hid_t parent, const std::string& nam
   return v;
 }
 
+Eigen::MatrixXi readIntMatrix(const Context& c, hid_t parent, const std::string& name) {
+  std::vector<hsize_t> dims;
+  Handle set = openDataset(c, parent, name, &dims);
+  if (dims.size() != 2)
+    c.fail(Str() << "dataset " << name << " has rank " << dims.size() << ", expected 2");
+  using RowMajor = Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor m(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
+  if (m.size() > 0) {
+    c.check(H5Dread(set, H5T_NATIVE_INT, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
+            "read dataset " + name, 0);
+  }
+  return m;
+}
+
 double readScalar(const Context& c, hid_t parent, const std::string& name) {
   std::vector<hsize_t> dims;
   Handle set = openDataset(c, parent, name, &dims);
@@ -191,16 +214,16 @@ void removeAttribute(const Context& c, hid_t obj, const std::string& name) {
 
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, const std::string& v) {
   removeAttribute(c, obj, name);
+  // Variable-length UTF-8 (h5py reads it as str, not bytes).
   Handle type(c.check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
-  c.check(H5Tset_size(type, std::max<std::size_t>(1, v.size())), "string size", 0);
+  c.check(H5Tset_size(type, H5T_VARIABLE), "string size", 0);
   c.check(H5Tset_cset(type, H5T_CSET_UTF8), "string charset", 0);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(c.check(H5Acreate2(obj, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
                       "create attribute " + name),
               H5Aclose);
-  std::string buf = v;
-  if (buf.empty()) buf.push_back('\0');
-  c.check(H5Awrite(attr, type, buf.data()), "write attribute " + name, 0);
+  const char* data = v.c_str();
+  c.check(H5Awrite(attr, type, &data), "write attribute " + name, 0);
 }
 
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, double v) {
@@ -247,7 +270,18 @@ std::string readStringAttribute(const Context& c, hid_t obj, const std::string& 
   Handle attr = openAttribute(c, obj, name);
   Handle type(c.check(H5Aget_type(attr), "type of attribute " + name), H5Tclose);
   if (H5Tget_class(type) != H5T_STRING) c.fail("attribute '" + name + "' is not a string");
-  if (H5Tis_variable_str(type) > 0) c.fail("attribute '" + name + "' is a variable-length string");
+  if (H5Tis_variable_str(type) > 0) {
+    Handle memType(c.check(H5Tcopy(H5T_C_S1), "string type"), H5Tclose);
+    c.check(H5Tset_size(memType, H5T_VARIABLE), "string size", 0);
+    c.check(H5Tset_cset(memType, H5Tget_cset(type)), "string charset", 0);
+    char* data = nullptr;
+    c.check(H5Aread(attr, memType, &data), "read attribute " + name, 0);
+    std::string out = data ? data : "";
+    Handle space(c.check(H5Aget_space(attr), "space of attribute " + name), H5Sclose);
+    H5Dvlen_reclaim(memType, space, H5P_DEFAULT, &data);
+    return out;
+  }
+  // Fixed-length (files written before SID format 3 and result format 4).
   const std::size_t size = H5Tget_size(type);
   if (size == 0) c.fail("size of attribute " + name);
   std::string buf(size, '\0');

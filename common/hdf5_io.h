@@ -1,5 +1,6 @@
 // Checked helpers around the HDF5 C API (1.10): RAII handles, datasets of doubles and ints
-// (matrices stored row-major as [rows, cols]), fixed-length string and scalar attributes.
+// (matrices stored row-major as [rows, cols]), variable-length UTF-8 string attributes
+// (reading also the fixed-length ones of older files) and scalar attributes.
 // Every call's return code is checked; failures throw the error type chosen by the caller
 // (ComputeError when writing, InputError when reading a user's file) naming the object.
 #pragma once
@@ -51,11 +52,14 @@ Handle createGroup(const Context& c, hid_t parent, const std::string& name);
 Handle openGroup(const Context& c, hid_t parent, const std::string& name);
 bool exists(hid_t parent, const std::string& name);
 
+// single: stored as 4-byte floats (pictures, not records); read back as doubles.
 void writeMatrix(const Context& c, hid_t parent, const std::string& name, const Eigen::MatrixXd& m,
-                 const std::string& units);
+                 const std::string& units, bool single = false);
 void writeVector(const Context& c, hid_t parent, const std::string& name, const Eigen::VectorXd& v,
                  const std::string& units);
 void writeInts(const Context& c, hid_t parent, const std::string& name, const std::vector<int>& v);
+void writeIntMatrix(const Context& c, hid_t parent, const std::string& name,
+                    const Eigen::MatrixXi& m);
 void writeScalar(const Context& c, hid_t parent, const std::string& name, double v,
                  const std::string& units);
 // Any dimensions (row-major), e.g. [nq, 3, nq].
@@ -66,6 +70,7 @@ void writeArray(const Context& c, hid_t parent, const std::string& name,
 Eigen::MatrixXd readMatrix(const Context& c, hid_t parent, const std::string& name);
 Eigen::VectorXd readVector(const Context& c, hid_t parent, const std::string& name);
 std::vector<int> readInts(const Context& c, hid_t parent, const std::string& name);
+Eigen::MatrixXi readIntMatrix(const Context& c, hid_t parent, const std::string& name);
 double readScalar(const Context& c, hid_t parent, const std::string& name);
 std::vector<double> readArray(const Context& c, hid_t parent, const std::string& name,
                               std::vector<hsize_t>* dims);

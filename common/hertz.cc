@@ -85,4 +85,44 @@ std::vector<double> hertzForceHistory(const HertzImpact& h, double v,
   return out;
 }
 
+HertzContactPatch hertzContactPatch(const HertzSphere& a, const HertzSphere& b, double force) {
+  const double eStar = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                              (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+  const double rStar = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
+  HertzContactPatch p;
+  p.radius = std::cbrt(3.0 * force * rStar / (4.0 * eStar));
+  p.max_pressure = p.radius > 0.0 ? 3.0 * force / (2.0 * std::acos(-1.0) * p.radius * p.radius) : 0.0;
+  return p;
+}
+
+HertzAxisStress hertzAxisStress(double z, double a, double p0, double nu) {
+  const double zeta = z / a;
+  // (z/a) atan(a/z) -> 0 as z -> 0.
+  const double g = zeta > 0.0 ? zeta * std::atan(1.0 / zeta) : 0.0;
+  HertzAxisStress s;
+  s.sigma_r = p0 * (-(1.0 + nu) * (1.0 - g) + 0.5 / (1.0 + zeta * zeta));
+  s.sigma_z = -p0 / (1.0 + zeta * zeta);
+  s.von_mises = std::abs(s.sigma_z - s.sigma_r);
+  return s;
+}
+
+HertzAxisMaximum hertzAxisMaximum(double nu) {
+  auto f = [nu](double z) { return hertzAxisStress(z, 1.0, 1.0, nu).von_mises; };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = 0.0, hi = 2.0;
+  double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+  double f1 = f(x1), f2 = f(x2);
+  while (hi - lo > 1e-12) {
+    if (f1 < f2) {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + g * (hi - lo), f2 = f(x2);
+    } else {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - g * (hi - lo), f1 = f(x1);
+    }
+  }
+  const double z = 0.5 * (lo + hi);
+  return {z, f(z)};
+}
+
 }  // namespace ffriga

@@ -44,4 +44,30 @@ HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v);
 // result agrees with max_force to 1e-9 relative). Zero outside [0, duration].
 std::vector<double> hertzForceHistory(const HertzImpact& h, double v, const std::vector<double>& t);
 
+// The contact patch of two spheres pressed together by a force F (Johnson eq. 4.22-4.24):
+//   a = (3 F R* / (4 E*))^(1/3),   p0 = 3 F / (2 pi a^2).
+struct HertzContactPatch {
+  double radius;        // a, m
+  double max_pressure;  // p0, Pa
+};
+HertzContactPatch hertzContactPatch(const HertzSphere& a, const HertzSphere& b, double force);
+
+// The stresses on the axis of symmetry at depth z >= 0 below the centre of a Hertz contact
+// patch of radius a and peak pressure p0, in a body of Poisson ratio nu (Johnson eq. 3.72):
+//   sigma_r = sigma_theta = p0 (-(1 + nu) (1 - (z/a) atan(a/z)) + 1 / (2 (1 + z^2/a^2))),
+//   sigma_z = -p0 / (1 + z^2/a^2),
+// principal stresses, so that von Mises = |sigma_z - sigma_r| (maximum ~0.62 p0 at
+// z ~ 0.48 a for nu = 0.3). Pa.
+struct HertzAxisStress {
+  double sigma_r, sigma_z, von_mises;
+};
+HertzAxisStress hertzAxisStress(double z, double a, double p0, double nu);
+
+// The maximum of the von Mises stress on the axis (golden-section search in 0 < z < 2 a,
+// to 1e-12 a): its depth z / a and value / p0 (0.4805 and 0.6199 for nu = 0.3).
+struct HertzAxisMaximum {
+  double depth_over_a, von_mises_over_p0;
+};
+HertzAxisMaximum hertzAxisMaximum(double nu);
+
 }  // namespace ffriga

@@ -67,6 +67,54 @@ struct Marker {
   Eigen::MatrixXd Psi;
 };
 
+// The body's material (the body file's, for stresses and Hertz's reference).
+struct SidMaterial {
+  double youngs_modulus = 0.0;  // E, Pa
+  double poisson_ratio = 0.0;   // nu, 1
+  double density = 0.0;         // rho, kg/m^3
+};
+
+// The exact geometry the body was built from (body file key geometry): its type and, for
+// the spheres (half_disk, sphere) and the rod, the radius; the rod's length.
+struct SidGeometry {
+  std::string type;     // half_disk | sphere | rod | nurbs
+  double radius = 0.0;  // m, 0 where the type has none
+  double length = 0.0;  // m, rod only
+  // Centre of the sphere (half_disk, sphere) in the body frame, m.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+};
+
+// Points of the body with their displacement and stress modes: the displacement at point i
+// is u_i = Phi.block(s i, 0, s, nq) q (m, body frame) and its stress
+// sigma_i = S.block(6 i, 0, 6, nq) q (Pa, Cartesian body-frame components xx, yy, zz, xy,
+// yz, xz; axisymmetric bodies in the meridian plane with z the hoop direction), exact for
+// the reduced model (sigma = D B Phi q, preproc/strain_operator.h).
+struct SampledModes {
+  Eigen::MatrixXd points;      // np x s, undeformed, body frame, m
+  Eigen::MatrixXd parameters;  // np x d, parametric coordinates
+  Eigen::MatrixXd Phi;         // (np * s) x nq, kg^(-1/2)
+  Eigen::MatrixXd stress;      // (np * 6) x nq, Pa kg^(-1/2) m^(-1)
+};
+
+// Visualisation mesh of the whole body: every element of the (hierarchical) spline space
+// split into `subdivisions` cells per parametric direction, points sampled on the exact
+// geometry and shared between cells by their parameters. Cells are quadrilaterals (2D) or
+// hexahedra (3D) with VTK/XDMF corner order; degenerate corners (poles, axis) may repeat.
+struct VisualisationMesh {
+  int subdivisions = 0;   // 0: the SID has no mesh
+  SampledModes samples;
+  Eigen::MatrixXi cells;  // nc x 4 or nc x 8, point numbers
+  bool empty() const { return subdivisions == 0; }
+};
+
+// A line of points through the body (body file key visualisation.stress_lines), e.g. the
+// symmetry axis under the contact point: `from` and `to` in the body frame.
+struct StressLine {
+  std::string name;
+  Eigen::VectorXd from, to;  // s, m, body frame
+  SampledModes samples;      // points evenly spaced from `from` to `to`
+};
+
 struct FlexibleBodySid {
   // Identity and provenance.
   std::string name;
@@ -128,6 +176,11 @@ struct FlexibleBodySid {
 
   std::vector<ContactSurface> surfaces;
   std::vector<Marker> markers;
+
+  SidMaterial material;
+  SidGeometry geometry;
+  VisualisationMesh mesh;
+  std::vector<StressLine> stress_lines;
 
   int nq() const { return static_cast<int>(frequencies_hz.size()); }
 };

@@ -68,6 +68,90 @@ ContactSurface readSurface(const Context& c, hid_t parent, const std::string& na
   return s;
 }
 
+// single: the modes in single precision (the visualisation mesh: pictures, half the size).
+void writeSamples(const Context& c, hid_t g, const SampledModes& m, bool single) {
+  h5::writeMatrix(c, g, "points", m.points, "m");
+  h5::writeMatrix(c, g, "parameters", m.parameters, "1");
+  h5::writeMatrix(c, g, "Phi", m.Phi, "kg^(-1/2)", single);
+  h5::writeMatrix(c, g, "stress", m.stress, "Pa kg^(-1/2) m^(-1)", single);
+}
+
+SampledModes readSamples(const Context& c, hid_t g, const std::string& where, int s, int nq) {
+  SampledModes m;
+  m.points = h5::readMatrix(c, g, "points");
+  m.parameters = h5::readMatrix(c, g, "parameters");
+  m.Phi = h5::readMatrix(c, g, "Phi");
+  m.stress = h5::readMatrix(c, g, "stress");
+  const Eigen::Index np = m.points.rows();
+  if (m.points.cols() != s || m.parameters.rows() != np || m.Phi.rows() != np * s ||
+      m.Phi.cols() != nq || m.stress.rows() != np * 6 || m.stress.cols() != nq) {
+    c.fail(Str() << where << ": points, parameters, Phi and stress disagree in size (" << np
+                 << " points, " << s << " coordinates, nq = " << nq << ")");
+  }
+  return m;
+}
+
+void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& sid) {
+  Handle m = h5::createGroup(c, file, "material");
+  h5::writeScalar(c, m, "youngs_modulus", sid.material.youngs_modulus, "Pa");
+  h5::writeScalar(c, m, "poisson_ratio", sid.material.poisson_ratio, "1");
+  h5::writeScalar(c, m, "density", sid.material.density, "kg m^-3");
+  Handle g = h5::createGroup(c, file, "geometry");
+  h5::writeAttribute(c, g, "type", sid.geometry.type);
+  h5::writeScalar(c, g, "radius", sid.geometry.radius, "m");
+  h5::writeScalar(c, g, "length", sid.geometry.length, "m");
+  h5::writeVector(c, g, "centre", sid.geometry.centre, "m");
+  if (!sid.mesh.empty()) {
+    Handle v = h5::createGroup(c, file, "visualisation");
+    h5::writeAttribute(c, v, "subdivisions", sid.mesh.subdivisions);
+    h5::writeIntMatrix(c, v, "cells", sid.mesh.cells);
+    writeSamples(c, v, sid.mesh.samples, true);
+  }
+  Handle l = h5::createGroup(c, file, "stress_lines");
+  for (const StressLine& line : sid.stress_lines) {
+    Handle lg = h5::createGroup(c, l, line.name);
+    h5::writeVector(c, lg, "from", line.from, "m");
+    h5::writeVector(c, lg, "to", line.to, "m");
+    writeSamples(c, lg, line.samples, false);
+  }
+}
+
+void readBodyDescription(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  const int s = sid->space_dim, nq = sid->nq();
+  Handle m = h5::openGroup(c, file, "material");
+  sid->material.youngs_modulus = h5::readScalar(c, m, "youngs_modulus");
+  sid->material.poisson_ratio = h5::readScalar(c, m, "poisson_ratio");
+  sid->material.density = h5::readScalar(c, m, "density");
+  Handle g = h5::openGroup(c, file, "geometry");
+  sid->geometry.type = h5::readStringAttribute(c, g, "type");
+  sid->geometry.radius = h5::readScalar(c, g, "radius");
+  sid->geometry.length = h5::readScalar(c, g, "length");
+  const Eigen::VectorXd centre = h5::readVector(c, g, "centre");
+  if (centre.size() != 3) c.fail("/geometry/centre must have 3 components");
+  sid->geometry.centre = centre;
+  if (h5::exists(file, "visualisation")) {
+    Handle v = h5::openGroup(c, file, "visualisation");
+    sid->mesh.subdivisions = h5::readIntAttribute(c, v, "subdivisions");
+    sid->mesh.cells = h5::readIntMatrix(c, v, "cells");
+    sid->mesh.samples = readSamples(c, v, "/visualisation", s, nq);
+    const Eigen::Index np = sid->mesh.samples.points.rows();
+    if (sid->mesh.cells.size() > 0 &&
+        (sid->mesh.cells.minCoeff() < 0 || sid->mesh.cells.maxCoeff() >= np)) {
+      c.fail("/visualisation/cells refers to points that do not exist");
+    }
+  }
+  Handle l = h5::openGroup(c, file, "stress_lines");
+  for (const std::string& name : h5::listGroup(c, l)) {
+    Handle lg = h5::openGroup(c, l, name);
+    StressLine line;
+    line.name = name;
+    line.from = h5::readVector(c, lg, "from");
+    line.to = h5::readVector(c, lg, "to");
+    line.samples = readSamples(c, lg, "/stress_lines/" + name, s, nq);
+    sid->stress_lines.push_back(std::move(line));
+  }
+}
+
 void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   // Root attributes: the fixed contract for tools.
   h5::writeAttribute(c, file, "format", std::string(kSidFormat));
@@ -129,6 +213,7 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   }
   Handle s = h5::createGroup(c, file, "contact_surfaces");
   for (const ContactSurface& cs : sid.surfaces) writeSurface(c, s, cs);
+  writeBodyDescription(c, file, sid);
 
   Handle p = h5::createGroup(c, file, "provenance");
   h5::writeAttribute(c, p, "input_yaml", sid.input_yaml);
@@ -257,6 +342,7 @@ FlexibleBodySid readSid(const std::string& path) {
   Handle s = h5::openGroup(c, file, "contact_surfaces");
   for (const std::string& name : h5::listGroup(c, s))
     sid.surfaces.push_back(readSurface(c, s, name));
+  readBodyDescription(c, file, &sid);
 
   Handle p = h5::openGroup(c, file, "provenance");
   sid.input_yaml = h5::readStringAttribute(c, p, "input_yaml");

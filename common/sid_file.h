@@ -16,7 +16,7 @@
 namespace ffriga {
 
 inline constexpr const char* kSidFormat = "ffriga-sid";
-inline constexpr int kSidFormatVersion = 2;
+inline constexpr int kSidFormatVersion = 3;
 
 void writeSid(const FlexibleBodySid& sid, const std::string& path);
 FlexibleBodySid readSid(const std::string& path);

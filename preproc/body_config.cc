@@ -408,12 +408,15 @@ BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes) {
   c.geometry_type = getString(doc, g["type"], "geometry.type");
   try {
     if (c.geometry_type == "half_disk") {
-      c.geometry = halfDisk(getDouble(doc, g["radius"], "geometry.radius"));
+      c.geometry_radius = getDouble(doc, g["radius"], "geometry.radius");
+      c.geometry = halfDisk(c.geometry_radius);
     } else if (c.geometry_type == "sphere") {
-      c.geometry = solidSphere(getDouble(doc, g["radius"], "geometry.radius"));
+      c.geometry_radius = getDouble(doc, g["radius"], "geometry.radius");
+      c.geometry = solidSphere(c.geometry_radius);
     } else if (c.geometry_type == "rod") {
-      c.geometry = solidRod(getDouble(doc, g["radius"], "geometry.radius"),
-                            getDouble(doc, g["length"], "geometry.length"));
+      c.geometry_radius = getDouble(doc, g["radius"], "geometry.radius");
+      c.geometry_length = getDouble(doc, g["length"], "geometry.length");
+      c.geometry = solidRod(c.geometry_radius, c.geometry_length);
     } else {
       c.geometry = explicitNurbs(doc, g);
     }
@@ -475,6 +478,7 @@ BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes) {
   parseContact(doc, root["contact"], c.geometry, &c.contact);
   parseMarkers(doc, root["markers"], c.geometry, &c.markers);
   parseReduction(doc, root["reduction"], c.contact.present, c.markers, &c.reduction);
+  c.visualisation = parseVisualisation(doc, root["visualisation"], c.geometry);
   c.source = std::move(doc);
   return c;
 }

@@ -10,6 +10,7 @@
 #include "common/hierarchical_space.h"
 #include "common/nurbs_patch.h"
 #include "common/yaml_input.h"
+#include "preproc/visualisation_config.h"
 
 namespace ffriga {
 
@@ -70,6 +71,8 @@ struct BodyConfig {
   ModelKind model = ModelKind::kSolid;
   Material material;
   std::string geometry_type;                // half_disk | sphere | rod | nurbs
+  double geometry_radius = 0.0;             // m: half_disk, sphere, rod (0 otherwise)
+  double geometry_length = 0.0;             // m: rod (0 otherwise)
   NurbsPatch geometry;                      // the exact, unrefined patch
   std::vector<int> elevate_degree;          // per parametric direction
   std::vector<int> insert_knots;            // per direction: knots per non-empty span
@@ -81,6 +84,7 @@ struct BodyConfig {
   ContactConfig contact;
   std::vector<MarkerConfig> markers;
   ReductionConfig reduction;
+  VisualisationConfig visualisation;
 };
 
 // Loads, validates against the body schema and checks the semantics (list lengths match

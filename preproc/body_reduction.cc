@@ -15,6 +15,8 @@
 #include "preproc/rigid_body_modes.h"
 #include "preproc/sid_invariants.h"
 #include "preproc/single_threaded_blas.h"
+#include "preproc/stress_modes.h"
+#include "preproc/visualisation_mesh.h"
 
 namespace ffriga {
 
@@ -39,6 +41,46 @@ class StageClock {
   std::function<void(const std::string&)> log_;
   std::chrono::steady_clock::time_point last_;
 };
+
+// Material and exact geometry for the runtime (stresses, Hertz's reference).
+void describeBody(const BodyConfig& config, const Eigen::Vector3d& origin, FlexibleBodySid* sid) {
+  sid->material.youngs_modulus = config.material.youngs_modulus;
+  sid->material.poisson_ratio = config.material.poisson_ratio;
+  sid->material.density = config.material.density;
+  sid->geometry.type = config.geometry_type;
+  sid->geometry.radius = config.geometry_radius;
+  sid->geometry.length = config.geometry_length;
+  sid->geometry.centre = -origin;  // the geometries are built around the origin
+}
+
+// Visualisation mesh and stress lines with their sampled displacement and stress modes.
+void sampleBody(const BodyConfig& config, const HierarchicalSpace& space,
+                const Eigen::Vector3d& origin, FlexibleBodySid* sid) {
+  const bool axi = config.model == ModelKind::kAxisymmetric;
+  IsotropicMaterial material;
+  material.youngs_modulus = config.material.youngs_modulus;
+  material.poisson_ratio = config.material.poisson_ratio;
+  const Eigen::MatrixXd& P = space.controlPoints();
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  const int s = space.spaceDim();
+  sid->mesh = visualisationMesh(space, config.visualisation.subdivisions, sid->Phi, material, axi,
+                                origin.head(s), size);
+  for (const StressLineConfig& lc : config.visualisation.stress_lines) {
+    std::vector<ParametricPoint> points;
+    for (const auto& xi : lc.parameters) {
+      ParametricPoint p;
+      p.xi = xi;
+      p.element = space.findElement(xi.data());
+      points.push_back(p);
+    }
+    StressLine line;
+    line.name = lc.name;
+    line.from = lc.from - origin.head(s);
+    line.to = lc.to - origin.head(s);
+    line.samples = sampleModes(space, points, sid->Phi, material, axi, origin.head(s), size);
+    sid->stress_lines.push_back(std::move(line));
+  }
+}
 
 }  // namespace
 
@@ -244,6 +286,12 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   }
   clock.done("surface", Str() << sid.surfaces.size() << " contact surface(s), "
                               << sid.markers.size() << " marker(s)");
+
+  describeBody(config, origin, &sid);
+  sampleBody(config, hspace, origin, &sid);
+  clock.done("visualisation",
+             Str() << sid.mesh.samples.points.rows() << " mesh points, " << sid.mesh.cells.rows()
+                   << " cells, " << sid.stress_lines.size() << " stress line(s)");
   return sid;
 }
 

@@ -8,6 +8,7 @@
 
 #include "common/error.h"
 #include "common/gauss_legendre.h"
+#include "preproc/strain_operator.h"
 
 namespace ffriga {
 
@@ -65,14 +66,19 @@ struct ElementMatrices {
 // Scratch space of one thread.
 struct QuadratureWork {
   PatchBasis basis;
-  Eigen::MatrixXd G[3];  // per component: Gauss points x nb, scaled physical derivatives
-  Eigen::MatrixXd N;     // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
+  // Per Gauss point g, scaled by (w detJ [2 pi r])^(1/2): physical gradients (s x nb) and
+  // values (for the hoop strain), and the radius (axisymmetric).
+  std::vector<Eigen::MatrixXd> grad;
+  Eigen::MatrixXd values;  // Gauss points x nb
+  std::vector<double> radius;
+  Eigen::MatrixXd N;       // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
+  Eigen::MatrixXd B, Bs, DBs;  // strain operator of one point; stacked over the Gauss points
 };
 
 struct QuadratureSetup {
   int d = 0, s = 0, ng = 0;
   std::array<QuadratureRule, 3> rules;
-  double lambda = 0.0, mu = 0.0;
+  Eigen::MatrixXd D;  // constitutive matrix (strain_operator.h)
 };
 
 // Phase 1 of an element: the scaled values and physical gradients at its Gauss points.
@@ -97,7 +103,9 @@ void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
     if (nb < 0) {
       nb = static_cast<int>(w.basis.index.size());
       out.functions = w.basis.index;
-      for (int c = 0; c < 3; ++c) w.G[c].setZero(ng, nb);
+      w.grad.assign(ng, Eigen::MatrixXd::Zero(s, nb));
+      w.values.setZero(ng, nb);
+      w.radius.assign(ng, 0.0);
       w.N.setZero(ng, nb);
     }
     const Eigen::MatrixXd& R = w.basis.table;  // rows: value, d/dxi_a
@@ -125,59 +133,31 @@ void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
       for (int j = 0; j < nb; ++j) {
         double v = 0.0;
         for (int a = 0; a < d; ++a) v += Jinv(a, c) * R(1 + a, j);
-        w.G[c](g, j) = sq * v;
+        w.grad[g](c, j) = sq * v;
       }
     }
+    w.values.row(g) = sq * R.row(0);
+    w.radius[g] = x(0);
     w.N.row(g) = std::sqrt(model.density * dV) * R.row(0);
-    // Axisymmetric hoop strain u_r / r: stored as a third "derivative" row block.
-    if (model.axisymmetric) w.G[2].row(g) = (sq / x(0)) * R.row(0);
   }
 }
 
-// Phase 2: element stiffness (solid or axisymmetric strains) and scalar mass matrices.
+// Phase 2: element stiffness K_e = sum_g B_g^T D B_g (B_g scaled by the square root of the
+// Gauss weight: one product of the stacked operators) and the scalar mass matrix.
 void elementMatrices(const ElasticityModel& model, const QuadratureSetup& q, QuadratureWork& w,
                      ElementMatrices& out) {
-  const int s = q.s;
+  const int s = q.s, ng = q.ng;
   const int nb = static_cast<int>(out.functions.size());
-  const double lambda = q.lambda, mu = q.mu;
-  out.Ke.setZero(s * nb, s * nb);
-  if (!model.axisymmetric) {
-    Eigen::MatrixXd H[3][3];
-    for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j) H[i][j].noalias() = w.G[i].transpose() * w.G[j];
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < i; ++j) H[i][j] = H[j][i].transpose();
-    const Eigen::MatrixXd L = H[0][0] + H[1][1] + H[2][2];
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        Eigen::MatrixXd block = lambda * H[i][j] + mu * H[j][i];
-        if (i == j) block += mu * L;
-        for (int a = 0; a < nb; ++a)
-          for (int b = 0; b < nb; ++b) out.Ke(a * 3 + i, b * 3 + j) = block(a, b);
-      }
-    }
-  } else {
-    // Strain rows for u_r (c = 0) and u_y (c = 1) of function a:
-    //   e_rr = d_r R u_r, e_yy = d_y R u_y, e_tt = R / r u_r, g_ry = d_y R u_r + d_r R u_y.
-    const Eigen::MatrixXd& Gr = w.G[0];
-    const Eigen::MatrixXd& Gy = w.G[1];
-    const Eigen::MatrixXd& Gt = w.G[2];
-    const Eigen::MatrixXd rr = Gr.transpose() * Gr, yy = Gy.transpose() * Gy,
-                          tt = Gt.transpose() * Gt, ry = Gr.transpose() * Gy,
-                          rt = Gr.transpose() * Gt, yt = Gy.transpose() * Gt;
-    const double l2m = lambda + 2.0 * mu;
-    for (int a = 0; a < nb; ++a) {
-      for (int b = 0; b < nb; ++b) {
-        // (u_r, u_r): e_rr e_rr, e_tt e_tt, e_rr e_tt cross terms, shear g_ry g_ry.
-        out.Ke(2 * a, 2 * b) =
-            l2m * (rr(a, b) + tt(a, b)) + lambda * (rt(a, b) + rt(b, a)) + mu * yy(a, b);
-        // (u_r of a, u_y of b)
-        out.Ke(2 * a, 2 * b + 1) = lambda * (ry(a, b) + yt(b, a)) + mu * ry(b, a);
-        out.Ke(2 * a + 1, 2 * b) = lambda * (ry(b, a) + yt(a, b)) + mu * ry(a, b);
-        out.Ke(2 * a + 1, 2 * b + 1) = l2m * yy(a, b) + mu * rr(a, b);
-      }
-    }
+  const int ns = strainComponents(model.axisymmetric);
+  w.Bs.resize(ng * ns, s * nb);
+  w.DBs.resize(ng * ns, s * nb);
+  for (int g = 0; g < ng; ++g) {
+    // Gauss points are interior: r > 0 (the scaled values over r give the hoop strain).
+    strainOperator(w.grad[g], w.values.row(g), model.axisymmetric, w.radius[g], false, w.B);
+    w.Bs.middleRows(g * ns, ns) = w.B;
+    w.DBs.middleRows(g * ns, ns).noalias() = q.D * w.B;
   }
+  out.Ke.noalias() = w.Bs.transpose() * w.DBs;
   out.Me.noalias() = w.N.transpose() * w.N;
 }
 
@@ -224,9 +204,9 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
   FFRIGA_CHECK(d == s && (s == 2 || s == 3),
                "elasticity needs d = s = 2 or 3, found d = " << d << ", s = " << s);
   FFRIGA_CHECK(!model.axisymmetric || s == 2, "axisymmetric models are 2D");
-  const double E = model.youngs_modulus, nu = model.poisson_ratio;
-  const double lambda = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-  const double mu = E / (2.0 * (1.0 + nu));
+  IsotropicMaterial material;
+  material.youngs_modulus = model.youngs_modulus;
+  material.poisson_ratio = model.poisson_ratio;
 
   // Functions per element (constant on an element) and node adjacency.
   std::vector<std::vector<int>> elementNodes(ne);
@@ -292,8 +272,7 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
     setup.s = s;
     setup.ng = ng;
     setup.rules = rules;
-    setup.lambda = lambda;
-    setup.mu = mu;
+    setup.D = constitutiveMatrix(material, model.axisymmetric);
     // Elements in chunks of a fixed size (independent of the thread count): the element
     // matrices of a chunk are computed in parallel, then scattered by column owners.
     // 256 elements of degree 2 in 3D hold 15 MB of element matrices (84 MB for degree 3).

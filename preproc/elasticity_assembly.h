@@ -5,9 +5,9 @@
 //   Ms(a, b) = int rho R_a R_b dV  (kg, the scalar mass matrix),
 //
 // with Lame constants lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
-//   * solid (3D): strains (e_xx, e_yy, e_zz, g_xy, g_yz, g_xz), dV = dx dy dz; written
-//     per pair of functions as K_ab(i, j) = int lambda d_i R_a d_j R_b + mu d_j R_a d_i R_b
-//     + mu delta_ij grad R_a . grad R_b dV.
+// with D and B from preproc/strain_operator.h (the same pieces recover stresses,
+// preproc/stress_modes.h); per element K_e = sum_g B_g^T D B_g w_g detJ_g, one dense product.
+//   * solid (3D): strains (e_xx, e_yy, e_zz, g_xy, g_yz, g_xz), dV = dx dy dz.
 //   * axisymmetric: the meridian section (x = r >= 0, y = axis), u = (u_r, u_y); strains
 //     (e_rr, e_yy, e_tt = u_r / r, g_ry), dV = 2 pi r dr dy, so that K and M are those of the
 //     full body of revolution (torsion-free axisymmetric deformation).

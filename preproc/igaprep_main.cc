@@ -142,6 +142,23 @@ void printSidSummary(const ffriga::FlexibleBodySid& s, const std::string& path) 
     for (int i = 0; i < s.nq(); ++i) damped += s.damping_ratio(i) > 0.0;
     std::printf("  damped modes         %d of %d\n", damped, s.nq());
   }
+  std::printf("  material             E = %.6g Pa, nu = %.6g, rho = %.6g kg/m^3\n",
+              s.material.youngs_modulus, s.material.poisson_ratio, s.material.density);
+  std::printf("  geometry             %s", s.geometry.type.c_str());
+  if (s.geometry.radius > 0.0) std::printf(", radius %.6g m", s.geometry.radius);
+  if (s.geometry.length > 0.0) std::printf(", length %.6g m", s.geometry.length);
+  std::printf("\n");
+  if (s.mesh.empty()) {
+    std::printf("  visualisation mesh   none\n");
+  } else {
+    std::printf("  visualisation mesh   %d points, %d cells (%d per element and direction)\n",
+                static_cast<int>(s.mesh.samples.points.rows()), static_cast<int>(s.mesh.cells.rows()),
+                s.mesh.subdivisions);
+  }
+  for (const auto& l : s.stress_lines) {
+    std::printf("  stress line          '%s': %d points\n", l.name.c_str(),
+                static_cast<int>(l.samples.points.rows()));
+  }
   std::printf("  mass                 %.10g kg\n", s.mass);
   std::printf("  frame origin         (%.6g, %.6g, %.6g) m\n", s.frame_origin(0), s.frame_origin(1),
               s.frame_origin(2));

@@ -16,6 +16,8 @@
 
 #include "common/cli.h"
 #include "common/output_path.h"
+#include "common/provenance.h"
+#include "common/sha256.h"
 #include "common/version.h"
 #include "runtime/contact/hertz_reference.h"
 #include "runtime/output/restart_record.h"
@@ -171,6 +173,73 @@ void writeRunAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene
   writer.setAttribute("end_time_s", scene.settings.end_time);
 }
 
+// Provenance (schemas/result_format.md): the program, its source revision and libraries,
+// the threads, and each SID file with its SHA-256 (rewritten by a restart: the program
+// that continued the run).
+void writeProvenance(ffriga::ResultWriter& writer, const ffriga::Scene& scene) {
+  namespace fs = std::filesystem;
+  writer.setAttribute("program_version", std::string(ffriga::kVersion));
+  writer.setAttribute("git_revision", ffriga::gitRevision());
+  writer.setAttribute("dependency_versions", ffriga::dependencyVersionsText());
+  writer.setAttribute("threads", static_cast<long>(ffriga::ompThreads()));
+  std::string sums;  // sha256sum's format: `sha256sum -c` checks the SIDs
+  for (int b = 0; b < scene.system->numBodies(); ++b) {
+    const std::string& f = b < static_cast<int>(scene.sid_files.size()) ? scene.sid_files[b] : "";
+    if (f.empty()) continue;
+    const std::string path = fs::absolute(f).lexically_normal().string();
+    const std::string sum = ffriga::sha256OfFile(f);
+    const std::string group = "/bodies/" + scene.system->body(b).name();
+    writer.setObjectAttribute(group, "sid_file", path);
+    writer.setObjectAttribute(group, "sid_sha256", sum);
+    sums += sum + "  " + path + "\n";
+  }
+  writer.setAttribute("sid_sha256", sums);
+}
+
+// Hertz's prediction for every contact pair of two spheres (attributes of
+// /contacts/<pair>), at the root too when the scene has one pair; each body's Hertz
+// partner for the stresses along its lines.
+std::vector<std::optional<ffriga::HertzPartner>> writeHertzReferences(ffriga::ResultWriter& writer,
+                                                                      const ffriga::Scene& scene) {
+  const ffriga::MultibodySystem& sys = *scene.system;
+  std::vector<std::optional<ffriga::HertzPartner>> partners(sys.numBodies());
+  for (int c = 0; c < sys.numContacts(); ++c) {
+    const auto h = ffriga::hertzReference(scene, c);
+    if (!h) continue;
+    const std::string group = "/contacts/" + sys.contact(c).name();
+    const std::pair<const char*, double> values[] = {
+        {"hertz_max_force_N", h->impact.max_force},
+        {"hertz_duration_s", h->impact.duration},
+        {"hertz_time_of_max_s", h->impact.time_of_max},
+        {"hertz_approach_speed_m_s", h->approach_speed},
+        {"hertz_max_approach_m", h->impact.max_approach},
+        {"hertz_stiffness_N_m1_5", h->impact.stiffness},
+        {"hertz_effective_mass_kg", h->impact.effective_mass}};
+    for (const auto& [name, v] : values) {
+      writer.setObjectAttribute(group, name, v);
+      if (sys.numContacts() == 1) writer.setAttribute(name, v);
+    }
+    const int a = sys.contact(c).bodyA(), b = sys.contact(c).bodyB();
+    if (!partners[a]) partners[a] = ffriga::HertzPartner{h->sphere_a, h->sphere_b};
+    if (!partners[b]) partners[b] = ffriga::HertzPartner{h->sphere_b, h->sphere_a};
+  }
+  return partners;
+}
+
+// The run against Hertz (root attributes, one contact pair with a Hertz reference):
+// relative differences of the force peak and the contact duration.
+void writeHertzComparison(ffriga::ResultWriter& writer, const ffriga::Scene& scene,
+                          const ffriga::SimulationReport& r) {
+  if (scene.system->numContacts() != 1) return;
+  const auto h = ffriga::hertzReference(scene, 0);
+  if (!h) return;
+  writer.setAttribute("force_vs_hertz", r.max_normal_force / h->impact.max_force - 1.0);
+  if (r.contact_begin >= 0.0 && r.contact_end >= 0.0) {
+    writer.setAttribute("duration_vs_hertz",
+                        (r.contact_end - r.contact_begin) / h->impact.duration - 1.0);
+  }
+}
+
 void writeModelAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene, int verbosity) {
   if (!scene.warnings.empty()) {
     std::string all;
@@ -202,6 +271,7 @@ int main(int argc, char** argv) {
           if (a == "--end-time") ro.end_time = parseEndTime(av[i + 1]);
           return 2;
         });
+    ffriga::applyThreads(o.threads);
     if (o.help) {
       std::cout << kUsage;
       return 0;
@@ -251,10 +321,18 @@ int main(int argc, char** argv) {
       writeRunAttributes(writer, scene, o.positional[0]);
       writeModelAttributes(writer, scene, o.verbosity);
     }
+    writeProvenance(writer, scene);
+    writer.enablePeakStressLines(*scene.system, writeHertzReferences(writer, scene));
+    if (scene.visualisation.enabled) writer.enableFrames(scene.visualisation, *scene.system);
     const ffriga::SimulationReport r = ffriga::simulate(*scene.system, scene.y0, scene.settings,
                                                         writer, restart ? &record : nullptr);
+    writeHertzComparison(writer, scene, r);
     writer.close();
     if (o.verbosity > 0) printSummary(scene, r);
+    if (o.verbosity > 0 && writer.frames() > 0) {
+      std::printf("  %ld visualisation frames: open %s in ParaView\n", writer.frames(),
+                  ffriga::xdmfPathFor(output).c_str());
+    }
     if (r.interrupted) {
       std::fprintf(stderr, "ffrsim: %s; %s holds the results up to then\n", r.status.c_str(),
                    output.c_str());

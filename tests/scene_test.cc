@@ -457,3 +457,14 @@ TEST_CASE("scene: SID names resolve against the scene folder, then each --sid-pa
   REQUIRE(again.sid_files[0] == "sid_path_test/path_a.sid.h5");
   std::filesystem::remove_all("sid_path_test");
 }
+
+TEST_CASE("scene: a visualisation request on a SID without a mesh is refused", "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);  // synthetic: no visualisation mesh
+  REQUIRE(sid.mesh.empty());
+  const std::string text =
+      std::string(kScene) + "outputs:\n  visualisation:\n    interval: 1.0e-5\n";
+  const std::string e = errorOf(text, sid);
+  INFO(e);
+  CHECK(e.find("scene.yaml:21: key 'outputs.visualisation'") != std::string::npos);
+  CHECK(e.find("has no visualisation mesh") != std::string::npos);
+}

@@ -1,25 +1,19 @@
 #include "runtime/contact/hertz_reference.h"
 
-#include <yaml-cpp/yaml.h>
-
 namespace ffriga {
 
 namespace {
 
+// A sphere's Hertz data from its SID (material and exact geometry, SID format 3).
 std::optional<HertzSphere> sphereOf(const FlexibleBodySid& sid) {
-  try {
-    const YAML::Node body = YAML::Load(sid.input_yaml);
-    const std::string type = body["geometry"]["type"].as<std::string>();
-    if (type != "half_disk" && type != "sphere") return std::nullopt;
-    HertzSphere s;
-    s.radius = body["geometry"]["radius"].as<double>();
-    s.youngs_modulus = body["material"]["youngs_modulus"].as<double>();
-    s.poisson_ratio = body["material"]["poisson_ratio"].as<double>();
-    s.mass = sid.mass;
-    return s;
-  } catch (const YAML::Exception&) {
-    return std::nullopt;  // not a body file we can read as a sphere: no reference
-  }
+  const std::string& type = sid.geometry.type;
+  if (type != "half_disk" && type != "sphere") return std::nullopt;
+  HertzSphere s;
+  s.radius = sid.geometry.radius;
+  s.youngs_modulus = sid.material.youngs_modulus;
+  s.poisson_ratio = sid.material.poisson_ratio;
+  s.mass = sid.mass;
+  return s;
 }
 
 }  // namespace
@@ -41,6 +35,8 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   h.approach_speed = -(vb - va).dot(n);
   if (!(h.approach_speed > 0.0)) return std::nullopt;
   h.impact = hertzImpact(*sa, *sb, h.approach_speed);
+  h.sphere_a = *sa;
+  h.sphere_b = *sb;
   return h;
 }
 

@@ -100,6 +100,7 @@ ResultWriter::ResultWriter(const std::string& path, const MultibodySystem& syste
                             H5Dclose);
     // Rows after the record's (written after its last flush, if any) are dropped.
     rows_ = written_ = resume->rows;
+    restart_time_ = resume->time;
     for (auto& series : series_) {
       const hsize_t dims[2] = {static_cast<hsize_t>(rows_), static_cast<hsize_t>(std::max(series->cols, 1))};
       check(H5Dset_extent(series->dataset.id(), dims), "H5Dset_extent", path_);
@@ -359,6 +360,7 @@ void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& s
   appendRow(*contact_, &contactEnergy);
   appendRow(*gravity_, &e.gravity);
   appendMultibodyRows(y, system);
+  if (frames_ && frames_->due(t)) frames_->append(t, y, system);
   ++rows_;
   resume_time_ = t;
   resume_state_ = y;
@@ -367,6 +369,22 @@ void ResultWriter::append(double t, const Eigen::VectorXd& y, MultibodySystem& s
     flush();
   else
     flushIfDue();
+}
+
+void ResultWriter::enableFrames(const VisualisationSettings& settings,
+                                const MultibodySystem& system) {
+  frames_ = std::make_unique<FrameWriter>(path_, file_.id(), system, settings, restart_time_);
+}
+
+void ResultWriter::enablePeakStressLines(const MultibodySystem& system,
+                                         std::vector<std::optional<HertzPartner>> partners) {
+  peak_ = std::make_unique<PeakStressLines>(system, std::move(partners));
+  if (peak_->empty()) peak_.reset();
+}
+
+void ResultWriter::recordPeak(double t, double force, const Eigen::VectorXd& y,
+                              const MultibodySystem& system) {
+  if (peak_) peak_->record(t, force, y, system);
 }
 
 void ResultWriter::flushIfDue() {
@@ -379,8 +397,11 @@ void ResultWriter::flush() {
   if (file_.id() < 0) return;
   for (auto& series : series_) writePending(*series);
   written_ = rows_;
+  if (frames_) frames_->flush();
+  if (peak_) peak_->write(h5::Context{path_}, file_.id());
   writeRestartRecord();
   check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_);
+  if (frames_) frames_->writeXdmf();  // refers only to frames now on disk
   last_flush_ = std::chrono::steady_clock::now();
 }
 
@@ -394,10 +415,26 @@ void ResultWriter::setAttribute(const std::string& name, long value) {
   h5::writeAttribute(h5::Context{path_}, file_.id(), name, value);
 }
 
+void ResultWriter::setObjectAttribute(const std::string& object, const std::string& name,
+                                      double value) {
+  const h5::Context c{path_};
+  Handle o(c.check(H5Oopen(file_.id(), object.c_str(), H5P_DEFAULT), "open " + object), H5Oclose);
+  h5::writeAttribute(c, o.id(), name, value);
+}
+void ResultWriter::setObjectAttribute(const std::string& object, const std::string& name,
+                                      const std::string& value) {
+  const h5::Context c{path_};
+  Handle o(c.check(H5Oopen(file_.id(), object.c_str(), H5P_DEFAULT), "open " + object), H5Oclose);
+  h5::writeAttribute(c, o.id(), name, value);
+}
+
 void ResultWriter::close() {
   if (file_.id() < 0) return;
   flush();
   series_.clear();
+  if (frames_) frames_written_ = frames_->frames();
+  frames_.reset();  // its datasets before the file
+  peak_.reset();
   file_.reset();
 }
 

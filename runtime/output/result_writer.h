@@ -12,19 +12,22 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "common/hdf5_io.h"
+#include "runtime/output/peak_stress_lines.h"
 #include "runtime/output/restart_record.h"
+#include "runtime/output/visualisation_frames.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {
 
 constexpr const char* kResultFormat = "ffriga-result";
-constexpr int kResultFormatVersion = 3;
+constexpr int kResultFormatVersion = 4;
 
 class ResultWriter {
  public:
@@ -37,6 +40,16 @@ class ResultWriter {
                double flush_interval = 2.0, const RestartRecord* resume = nullptr);
   ~ResultWriter();
 
+  // Visualisation frames (runtime/output/visualisation_frames.h) from now on, at the output
+  // rows they fall on; on a restart, frames after the restart time are dropped.
+  void enableFrames(const VisualisationSettings& settings, const MultibodySystem& system);
+  // Stresses along the SIDs' stress lines at the largest contact force
+  // (runtime/output/peak_stress_lines.h); partners: each body's Hertz partner, if any.
+  void enablePeakStressLines(const MultibodySystem& system,
+                             std::vector<std::optional<HertzPartner>> partners);
+  // A step ending at t with state y has the largest contact force so far (N).
+  void recordPeak(double t, double force, const Eigen::VectorXd& y, const MultibodySystem& system);
+  long frames() const { return frames_ ? frames_->frames() : frames_written_; }
   // One output row at time t (s) for state y.
   void append(double t, const Eigen::VectorXd& y, MultibodySystem& system);
   void flush();
@@ -50,6 +63,11 @@ class ResultWriter {
   void setAttribute(const std::string& name, const std::string& value);
   void setAttribute(const std::string& name, double value);
   void setAttribute(const std::string& name, long value);
+  // Attributes of an object of the file (a group or dataset, by its path, e.g.
+  // "/contacts/impact"), replaced if present.
+  void setObjectAttribute(const std::string& object, const std::string& name, double value);
+  void setObjectAttribute(const std::string& object, const std::string& name,
+                          const std::string& value);
   // Flushes and closes; later calls do nothing.
   void close();
 
@@ -105,6 +123,10 @@ class ResultWriter {
   Eigen::VectorXd resume_state_;
   std::map<std::string, double> resume_figures_;
   long rows_ = 0;
+  double restart_time_ = -1.0;  // the record's time when opened for a restart
+  std::unique_ptr<FrameWriter> frames_;
+  std::unique_ptr<PeakStressLines> peak_;
+  long frames_written_ = 0;
   int flush_rows_ = 16;
   double flush_interval_ = 2.0;  // s of wall time
   std::chrono::steady_clock::time_point last_flush_;

@@ -245,6 +245,31 @@ void checkOutputRows(const YamlDocument& doc) {
   }
 }
 
+// outputs.visualisation: frames of every SID body; each SID must carry a visualisation mesh
+// (igaprep's body file key visualisation.subdivisions > 0). Scene-defined rigid bodies have
+// no shape and are not drawn.
+void parseVisualisationOutput(const YamlDocument& doc, const YAML::Node& V, Scene& scene) {
+  if (!V) return;
+  VisualisationSettings& v = scene.visualisation;
+  v.enabled = true;
+  v.interval = getDouble(doc, V["interval"], "outputs.visualisation.interval");
+  v.magnification = doubleOr(doc, V["magnification"], "outputs.visualisation.magnification", 1.0);
+  if (V["revolve"]) {
+    v.revolve = getInt(doc, V["revolve"], "outputs.visualisation.revolve");
+    if (v.revolve == 1 || v.revolve == 2)
+      throw inputError(doc, V["revolve"], "outputs.visualisation.revolve",
+                       "expected 0 (the meridian section) or at least 3 segments");
+  }
+  const MultibodySystem& sys = *scene.system;
+  for (int b = 0; b < sys.numBodies(); ++b) {
+    if (scene.sid_files[b].empty() || !sys.body(b).sid().mesh.empty()) continue;
+    throw inputError(doc, V, "outputs.visualisation",
+                     Str() << "body '" << sys.body(b).name() << "': its SID file "
+                           << scene.sid_files[b] << " has no visualisation mesh (rebuild it with "
+                           << "igaprep and visualisation.subdivisions >= 1 in the body file)");
+  }
+}
+
 }  // namespace
 
 Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_paths,
@@ -471,6 +496,7 @@ Scene buildScene(YamlDocument document, const std::vector<std::string>& sid_path
   }
   checkInitialConstraints(doc, sys, scene.y0);
   checkInitialPenetration(doc, sys, scene.y0);
+  if (root["outputs"]) parseVisualisationOutput(doc, root["outputs"]["visualisation"], scene);
   if (root["static_preload"] && root["static_preload"].as<bool>()) {
     scene.static_preload = true;
     scene.preload = staticPreload(sys, scene.y0);

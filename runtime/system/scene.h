@@ -55,6 +55,7 @@ struct Scene {
   // Warnings about the model (runtime/bodies/quasi_static_rule.h), one line each; ffrsim
   // prints them and stores them in the result file (root attribute `warnings`).
   std::vector<std::string> warnings;
+  VisualisationSettings visualisation;  // outputs.visualisation
 };
 
 // Initial pose of one body while the scene is assembled: inertial components.

@@ -25,8 +25,12 @@ void writeStatistics(ResultWriter& w, const SimulationReport& r) {
   w.setAttribute("wall_time_s", r.wall_time_s);
   // Headline figures (schemas/result_format.md): -1 where there was no contact.
   w.setAttribute("max_contact_force_N", r.max_normal_force);
+  w.setAttribute("max_contact_force_time_s", r.max_force_time);
   w.setAttribute("contact_begin_s", r.contact_begin);
   w.setAttribute("contact_end_s", r.contact_end);
+  w.setAttribute("contact_duration_s", r.contact_begin >= 0.0 && r.contact_end >= 0.0
+                                           ? r.contact_end - r.contact_begin
+                                           : -1.0);
   w.setAttribute("solver_steps", r.stats.steps);
   w.setAttribute("solver_rhs_evals", r.stats.rhs_evals);
   w.setAttribute("solver_jacobian_evals", r.stats.jacobian_evals);
@@ -122,6 +126,7 @@ std::map<std::string, double> runFigures(const SimulationReport& r, int phase, d
       {"phase", phase},
       {"wall_time_s", wall},
       {"max_contact_force_N", r.max_normal_force},
+      {"max_contact_force_time_s", r.max_force_time},
       {"contact_begin_s", r.contact_begin},
       {"contact_end_s", r.contact_end},
       {"steps", static_cast<double>(r.stats.steps)},
@@ -152,6 +157,8 @@ void restoreFigures(const RestartRecord& rec, SimulationReport& r, int& phase,
   phase = static_cast<int>(count("phase"));
   wall = get("wall_time_s");
   r.max_normal_force = get("max_contact_force_N");
+  r.max_force_time =
+      rec.figures.count("max_contact_force_time_s") ? get("max_contact_force_time_s") : -1.0;
   r.contact_begin = rec.figures.count("contact_begin_s") ? get("contact_begin_s") : -1.0;
   r.contact_end = rec.figures.count("contact_end_s") ? get("contact_end_s") : -1.0;
   stats.steps = count("steps");
@@ -283,7 +290,12 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       const Clock::time_point s0 = Clock::now();
       if (approach.active()) approach.update(integ, t);
       t = integ.step();
+      const double maxBefore = report.max_normal_force;
       const bool contact = contactAtStepEnd(system, report);
+      if (report.max_normal_force > maxBefore) {
+        report.max_force_time = t;
+        writer.recordPeak(t, report.max_normal_force, integ.currentState(), system);
+      }
       checkRepresentable(system, t);
       std::vector<double> times;  // the regular outputs inside this step
       while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14))

@@ -46,6 +46,7 @@ struct SimulationReport {
   IntegratorStats stats;
   PhaseStats before, during, after;
   double max_normal_force = 0.0;  // N, over the steps and contact pairs
+  double max_force_time = -1.0;   // s, the end of the step where it was seen (-1: none)
   // Contact duration, from the first to the last step with an active contact point: each
   // end is the midpoint between the last step without and the first step with contact
   // (s; negative when there was no contact).

@@ -22,8 +22,14 @@ check = Checks()
 TIMING = ("wall_time_s", "cpu_time_s", "preprocessing_time_s", "peak_memory")  # and stage times
 
 
+# Attributes that describe the run, not its results: the thread count (provenance) and the
+# name of the XDMF file beside the result (named after the result file).
+RUN = ("threads", "xdmf")
+
+
 def is_timing(path, name):
-    return (any(t in name for t in TIMING) or name.endswith("_wall_s") or "stage_times" in path)
+    return (any(t in name for t in TIMING) or name.endswith("_wall_s") or "stage_times" in path
+            or name in RUN)
 
 
 def contents(path):

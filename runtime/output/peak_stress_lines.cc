@@ -1,0 +1,138 @@
+#include "runtime/output/peak_stress_lines.h"
+
+#include <cmath>
+
+#include "common/error.h"
+#include "common/von_mises.h"
+
+namespace ffriga {
+
+using h5::Handle;
+
+namespace {
+
+// Whether the line starts on the sphere's surface and points at its centre (1e-6 of the
+// radius): then its distances are Hertz's depths z.
+bool alongRadius(const StressLine& line, const SidGeometry& g) {
+  const int s = static_cast<int>(line.from.size());
+  const Eigen::VectorXd c = g.centre.head(s);
+  const Eigen::VectorXd toCentre = c - line.from;
+  const Eigen::VectorXd dir = line.to - line.from;
+  if (!(g.radius > 0.0) || dir.norm() == 0.0) return false;
+  if (std::abs(toCentre.norm() - g.radius) > 1e-6 * g.radius) return false;
+  return (toCentre.normalized() - dir.normalized()).norm() <= 1e-6;
+}
+
+// Index of the largest entry.
+Eigen::Index argMax(const Eigen::VectorXd& v) {
+  Eigen::Index i = 0;
+  v.maxCoeff(&i);
+  return i;
+}
+
+// Index of the largest local maximum strictly inside the line (-1: none): the subsurface
+// maximum of a line that starts at the contact point, apart from the surface value.
+Eigen::Index argInteriorMax(const Eigen::VectorXd& v) {
+  Eigen::Index best = -1;
+  for (Eigen::Index i = 1; i + 1 < v.size(); ++i) {
+    if (v(i) >= v(i - 1) && v(i) >= v(i + 1) && (best < 0 || v(i) > v(best))) best = i;
+  }
+  return best;
+}
+
+}  // namespace
+
+PeakStressLines::PeakStressLines(const MultibodySystem& system,
+                                 std::vector<std::optional<HertzPartner>> partners) {
+  for (int b = 0; b < system.numBodies(); ++b) {
+    const FlexibleBodySid& sid = system.body(b).sid();
+    for (const StressLine& sl : sid.stress_lines) {
+      Line line;
+      line.body = b;
+      line.body_name = system.body(b).name();
+      line.source = &sl;
+      if (b < static_cast<int>(partners.size()) && partners[b] && alongRadius(sl, sid.geometry))
+        line.hertz = partners[b];
+      const Eigen::MatrixXd& P = sl.samples.points;
+      line.distance.resize(P.rows());
+      for (Eigen::Index i = 0; i < P.rows(); ++i)
+        line.distance(i) = (P.row(i).transpose() - sl.from).norm();
+      lines_.push_back(std::move(line));
+    }
+  }
+}
+
+void PeakStressLines::record(double t, double force, const Eigen::VectorXd& y,
+                             const MultibodySystem& system) {
+  if (lines_.empty()) return;
+  time_ = t;
+  force_ = force;
+  pending_ = true;
+  for (Line& line : lines_) {
+    const BodyModel& body = system.body(line.body);
+    const BodyPose pose = body.pose(y.data() + system.positionOffset(line.body));
+    const SampledModes& S = (*line.source).samples;
+    const Eigen::Index n = S.points.rows();
+    line.stress.setZero(n, 6);
+    line.von_mises.setZero(n);
+    if (pose.q.size() == 0 || pose.q.size() != S.stress.cols()) continue;  // frozen: no stress
+    const Eigen::VectorXd sigma = S.stress * pose.q;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      line.stress.row(i) = sigma.segment(6 * i, 6).transpose();
+      line.von_mises(i) = vonMises(sigma.data() + 6 * i);
+    }
+  }
+}
+
+void PeakStressLines::write(const h5::Context& c, hid_t file) {
+  if (!pending_) return;
+  pending_ = false;
+  if (h5::exists(file, "stress_lines")) {
+    c.check(H5Ldelete(file, "stress_lines", H5P_DEFAULT), "replace /stress_lines", 0);
+  }
+  Handle root = h5::createGroup(c, file, "stress_lines");
+  h5::writeAttribute(c, root.id(), "time_s", time_);
+  h5::writeAttribute(c, root.id(), "contact_force_N", force_);
+  h5::writeAttribute(c, root.id(), "description",
+                     std::string("stresses along the SIDs' stress lines at the step of the "
+                                 "largest contact force"));
+  for (const Line& line : lines_) {
+    const StressLine& sl = (*line.source);
+    Handle bg = h5::exists(root.id(), line.body_name) ? h5::openGroup(c, root.id(), line.body_name)
+                                                       : h5::createGroup(c, root.id(), line.body_name);
+    Handle g = h5::createGroup(c, bg.id(), sl.name);
+    h5::writeVector(c, g.id(), "from", sl.from, "m");
+    h5::writeVector(c, g.id(), "to", sl.to, "m");
+    h5::writeMatrix(c, g.id(), "points", sl.samples.points, "m");
+    h5::writeVector(c, g.id(), "distance", line.distance, "m");
+    h5::writeMatrix(c, g.id(), "stress", line.stress, "Pa");
+    h5::writeVector(c, g.id(), "von_mises", line.von_mises, "Pa");
+    const Eigen::Index at = argMax(line.von_mises);
+    h5::writeAttribute(c, g.id(), "von_mises_max_Pa", line.von_mises(at));
+    h5::writeAttribute(c, g.id(), "von_mises_max_distance_m", line.distance(at));
+    const Eigen::Index in = argInteriorMax(line.von_mises);
+    h5::writeAttribute(c, g.id(), "von_mises_interior_max_Pa", in < 0 ? -1.0 : line.von_mises(in));
+    h5::writeAttribute(c, g.id(), "von_mises_interior_max_distance_m",
+                       in < 0 ? -1.0 : line.distance(in));
+    if (!line.hertz) continue;
+    const HertzContactPatch patch = hertzContactPatch(line.hertz->self, line.hertz->other, force_);
+    const double nu = line.hertz->self.poisson_ratio;
+    const Eigen::Index n = line.distance.size();
+    Eigen::VectorXd vm(n), sr(n), sz(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const HertzAxisStress h =
+          hertzAxisStress(line.distance(i), patch.radius, patch.max_pressure, nu);
+      vm(i) = h.von_mises, sr(i) = h.sigma_r, sz(i) = h.sigma_z;
+    }
+    h5::writeVector(c, g.id(), "hertz_von_mises", vm, "Pa");
+    h5::writeVector(c, g.id(), "hertz_sigma_radial", sr, "Pa");
+    h5::writeVector(c, g.id(), "hertz_sigma_axial", sz, "Pa");
+    const HertzAxisMaximum hm = hertzAxisMaximum(nu);
+    h5::writeAttribute(c, g.id(), "hertz_contact_radius_m", patch.radius);
+    h5::writeAttribute(c, g.id(), "hertz_max_pressure_Pa", patch.max_pressure);
+    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_Pa", hm.von_mises_over_p0 * patch.max_pressure);
+    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_depth_m", hm.depth_over_a * patch.radius);
+  }
+}
+
+}  // namespace ffriga

@@ -1,0 +1,52 @@
+// The stresses along the bodies' stress lines (SID /stress_lines, e.g. the symmetry axis
+// under the contact point) at the time of the maximum contact force, with Hertz's field
+// (common/hertz.h hertzAxisStress, Johnson eq. 3.72) where the body is a Hertz sphere of a
+// contact pair and the line starts on its surface and points at its centre. Recovered from
+// the reduced model as sigma = S q (S: the SID's stress modes), so exact for it. Written to
+// the result file as /stress_lines/<body>/<line> (schemas/result_format.md) whenever a
+// larger force was seen since the last write, at the result file's flushes.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/hdf5_io.h"
+#include "common/hertz.h"
+#include "runtime/system/multibody_system.h"
+
+namespace ffriga {
+
+// A body as one of Hertz's spheres: itself and the other sphere of its contact pair.
+struct HertzPartner {
+  HertzSphere self{}, other{};
+};
+
+class PeakStressLines {
+ public:
+  // partners[b]: body b's Hertz partner, if any (size numBodies, or empty: none).
+  PeakStressLines(const MultibodySystem& system, std::vector<std::optional<HertzPartner>> partners);
+  bool empty() const { return lines_.empty(); }
+  // The state y at time t has the largest contact force so far (N): recover the stresses.
+  void record(double t, double force, const Eigen::VectorXd& y, const MultibodySystem& system);
+  // Writes /stress_lines if something was recorded since the last write.
+  void write(const h5::Context& c, hid_t file);
+
+ private:
+  struct Line {
+    int body = 0;
+    std::string body_name;
+    const StressLine* source = nullptr;  // in the body's SID
+    std::optional<HertzPartner> hertz;
+    Eigen::VectorXd distance;      // from the line's start, m
+    Eigen::MatrixXd stress;        // n x 6, Pa
+    Eigen::VectorXd von_mises;     // Pa
+  };
+  std::vector<Line> lines_;
+  double time_ = -1.0, force_ = 0.0;
+  bool pending_ = false;
+};
+
+}  // namespace ffriga

@@ -1,0 +1,75 @@
+// Visualisation frames of a run (scene key outputs.visualisation): at every multiple of
+// `interval` (at the first output row at or after it), every flexible body whose SID has a
+// visualisation mesh (common/sid.h VisualisationMesh) is written to the result file as
+//
+//   /visualisation/time                  [frames]              s
+//   /visualisation/<body>/cells          [cells, 4 | 8]        point numbers (VTK order)
+//   /visualisation/<body>/points         [frames, points, 3]   deformed, inertial, m
+//   /visualisation/<body>/displacement   [frames, points, 3]   elastic, inertial, m
+//   /visualisation/<body>/von_mises      [frames, points]      Pa
+//
+// points = r_R + A (x0 + m Phi q) with the magnification m (displacement and stress are
+// never magnified), displacement = A Phi q, von Mises of sigma = S q (SID stress modes).
+// Axisymmetric bodies are drawn as their meridian section (the plane z = 0, x the radius)
+// or, with revolve = N >= 3, as the solid of revolution in N hexahedral segments about
+// the y axis. Frames are single precision (4 bytes: the picture, not the record; the rows
+// of /bodies hold the state in double precision).
+//
+// Beside the result file RESULT.h5 an XDMF file RESULT.xdmf (runtime/output/xdmf_file.h)
+// describes the frames on disk; it is rewritten atomically at every flush, so that it
+// always refers to frames that exist. On a restart, frames after the restart time are
+// dropped like the rows.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/hdf5_io.h"
+#include "runtime/system/multibody_system.h"
+
+namespace ffriga {
+
+struct VisualisationSettings {
+  bool enabled = false;
+  double interval = 0.0;       // s
+  double magnification = 1.0;  // of the elastic displacement in `points`
+  int revolve = 0;             // axisymmetric bodies: 0 meridian section, N >= 3 segments
+};
+
+// RESULT.xdmf for RESULT.h5 (any other name: the name with .xdmf appended).
+std::string xdmfPathFor(const std::string& result_path);
+
+class FrameWriter {
+ public:
+  // Creates the group /visualisation of `file` (or, with resume_time >= 0, opens it and
+  // drops the frames after resume_time). Bodies without a mesh (rigid bodies) are skipped.
+  FrameWriter(const std::string& result_path, hid_t file, const MultibodySystem& system,
+              const VisualisationSettings& settings, double resume_time);
+  ~FrameWriter();
+  // Whether an output row at time t gets a frame.
+  bool due(double t) const;
+  void append(double t, const Eigen::VectorXd& y, const MultibodySystem& system);
+  // Writes pending frames to the HDF5 file.
+  void flush();
+  // Rewrites the XDMF file for the frames written (call after the HDF5 file is flushed).
+  void writeXdmf() const;
+  long frames() const { return static_cast<long>(times_.size()); }
+
+ private:
+  struct Body;
+  void createBody(Body& b, hid_t parent);
+  void openBody(Body& b, hid_t parent, long keep);
+  std::string path_;
+  hid_t file_;
+  VisualisationSettings settings_;
+  h5::Handle group_, time_;
+  std::vector<std::unique_ptr<Body>> bodies_;
+  std::vector<double> times_;  // every frame's time, on disk and pending
+  long written_ = 0;           // frames on disk
+  double next_ = 0.0;          // time of the next frame
+};
+
+}  // namespace ffriga

@@ -1,0 +1,113 @@
+"""The ParaView output of a real run opens in real ParaView (issue 12): igaprep and ffrsim run
+the flagship scene (impact2d_h3, which asks for visualisation frames), then Debian's
+pvpython, offscreen under xvfb-run, opens RESULT.xdmf, goes to the frame nearest the force
+peak, colours the bodies by von Mises stress and saves a PNG (tests/e2e/render_frame.py).
+Checked: ParaView read every frame time, point and cell; its bounds and von Mises range are
+the result file's; the frames put each body where /bodies says (rigid motion plus the
+magnified elastic displacement); the PNG is not blank.
+
+usage: check_paraview.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+
+import h5py
+import matplotlib.image
+import numpy as np
+
+from result_checks import Checks
+
+igaprep, ffrsim, source, out = sys.argv[1:5]
+os.makedirs(out, exist_ok=True)
+check = Checks()
+
+
+def run(cmd):
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        print(r.stdout + r.stderr)
+        check(False, f"{' '.join(cmd)} exited with {r.returncode}")
+        check.exit()
+    return r
+
+
+for tool in ("pvpython", "xvfb-run"):
+    if shutil.which(tool) is None:
+        check(False, f"{tool} not found (apt-get install paraview python3-paraview xvfb: "
+                     f".ci/install-deps)")
+        check.exit()
+
+sid = os.path.join(out, "sphere2d_h3.sid.h5")
+result = os.path.join(out, "impact2d_h3.h5")
+xdmf = os.path.join(out, "impact2d_h3.xdmf")
+run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"), "-o", sid])
+for stale in (result, xdmf):
+    if os.path.exists(stale):
+        os.remove(stale)
+run([ffrsim, "-q", os.path.join(source, "configs", "scenes", "impact2d_h3.yaml"), "--sid-path",
+     out, "-o", result])
+check(os.path.exists(xdmf), f"ffrsim wrote {os.path.basename(xdmf)} beside the result")
+
+with h5py.File(result, "r") as f, h5py.File(sid, "r") as s:
+    frames = f["visualisation/time"][:]
+    k = int(np.argmin(np.abs(frames - f.attrs["max_contact_force_time_s"])))
+    t = float(frames[k])
+    m = f["visualisation"].attrs["magnification"]
+    row = int(np.argmin(np.abs(f["time"][:] - t)))
+    check(f["time"][row] == t, f"frame {k} at t = {t:.3e} s (nearest the force peak) is output "
+                               f"row {row}")
+    points, cells, vm, where = 0, 0, [], []
+    x0 = s["visualisation/points"][:]
+    for b in ("lower", "upper"):
+        g = f["visualisation"][b]
+        P = g["points"][k].astype(float)
+        U = g["displacement"][k].astype(float)
+        points += P.shape[0]
+        cells += g["cells"].shape[0]
+        vm.append(g["von_mises"][k])
+        # Where /bodies says: r + R (x0 + m u), R of the unit quaternion (p0, p1, p2, p3).
+        r = f["bodies"][b]["position"][row]
+        p0, p1, p2, p3 = f["bodies"][b]["orientation"][row]
+        R = np.array([[1 - 2 * (p2 * p2 + p3 * p3), 2 * (p1 * p2 - p0 * p3), 2 * (p1 * p3 + p0 * p2)],
+                      [2 * (p1 * p2 + p0 * p3), 1 - 2 * (p1 * p1 + p3 * p3), 2 * (p2 * p3 - p0 * p1)],
+                      [2 * (p1 * p3 - p0 * p2), 2 * (p2 * p3 + p0 * p1), 1 - 2 * (p1 * p1 + p2 * p2)]])
+        X0 = np.column_stack([x0, np.zeros(len(x0))])
+        expected = r + X0 @ R.T + m * U
+        # Single precision frames: 6e-8 relative of 2 cm.
+        err = np.abs(P - expected).max()
+        check(err < 5e-9, f"{b}: frame points = position + R x0 + {m:g} u to {err:.1e} m")
+        where.append(P)
+    allP = np.vstack(where)
+    vm = np.concatenate(vm)
+
+png, info_json = os.path.join(out, "peak.png"), os.path.join(out, "peak.json")
+run(["xvfb-run", "-a", "pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"), xdmf,
+     repr(t), png, info_json])
+with open(info_json) as fi:
+    info = json.load(fi)
+check(len(info["times"]) == len(frames) and np.allclose(info["times"], frames, rtol=1e-12, atol=0),
+      f"ParaView sees {len(info['times'])} frame times, the result has {len(frames)}")
+check(info["points"] == points and info["cells"] == cells,
+      f"ParaView read {info['points']} points and {info['cells']} cells (result: {points}, {cells})")
+lo, hi = allP.min(axis=0), allP.max(axis=0)
+bounds = np.array(info["bounds"]).reshape(3, 2)
+check(np.allclose(bounds[:, 0], lo, atol=1e-9) and np.allclose(bounds[:, 1], hi, atol=1e-9),
+      f"ParaView's bounds {np.round(bounds.ravel(), 6).tolist()} are the frame's")
+check(np.isclose(info["von_mises_range"][0], vm.min(), rtol=1e-6)
+      and np.isclose(info["von_mises_range"][1], vm.max(), rtol=1e-6),
+      f"ParaView's von Mises range {info['von_mises_range'][0]:.4g} .. "
+      f"{info['von_mises_range'][1]:.4g} Pa is the frame's")
+image = matplotlib.image.imread(png)[:, :, :3]
+background = np.all(image > 0.99, axis=2)
+colours = len(np.unique((image[~background] * 255).astype(int).reshape(-1, 3), axis=0))
+check(background.mean() < 0.95 and colours >= 10,
+      f"{os.path.basename(png)}: {100 * (1 - background.mean()):.1f} % of the pixels drawn, "
+      f"{colours} colours")
+# The two bodies: drawn above and below the contact point (the middle row of the image).
+rows = np.where(~background.all(axis=1))[0]
+check(rows.size > 0 and rows.min() < image.shape[0] * 0.3 and rows.max() > image.shape[0] * 0.7,
+      "both bodies are in the picture (above and below the contact)")
+check.exit()
