@@ -112,6 +112,21 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
   }
 }
 
+// The stresses along the SIDs' lines at the force peak (result file: /stress_lines).
+void printStressLinePeaks(const std::vector<ffriga::StressLinePeak>& peaks) {
+  for (const ffriga::StressLinePeak& p : peaks) {
+    if (p.von_mises < 0.0) continue;
+    std::printf("  von Mises on %s/%s at the force peak: %.4g MPa at %.4g um", p.body.c_str(),
+                p.line.c_str(), 1e-6 * p.von_mises, 1e6 * p.distance);
+    if (p.hertz) {
+      std::printf(" (Hertz %.4g MPa at %.4g um: %+.2f %%, %+.2f %%)", 1e-6 * p.hertz_von_mises,
+                  1e6 * p.hertz_depth, 100.0 * (p.von_mises / p.hertz_von_mises - 1.0),
+                  100.0 * (p.distance / p.hertz_depth - 1.0));
+    }
+    std::printf("\n");
+  }
+}
+
 // Command-line options of ffrsim beyond the common ones.
 struct RunOptions {
   std::vector<std::string> sid_paths;
@@ -329,6 +344,7 @@ int main(int argc, char** argv) {
     writeHertzComparison(writer, scene, r);
     writer.close();
     if (o.verbosity > 0) printSummary(scene, r);
+    if (o.verbosity > 0) printStressLinePeaks(writer.stressLinePeaks());
     if (o.verbosity > 0 && writer.frames() > 0) {
       std::printf("  %ld visualisation frames: open %s in ParaView\n", writer.frames(),
                   ffriga::xdmfPathFor(output).c_str());

@@ -135,4 +135,25 @@ void PeakStressLines::write(const h5::Context& c, hid_t file) {
   }
 }
 
+std::vector<StressLinePeak> PeakStressLines::peaks() const {
+  std::vector<StressLinePeak> out;
+  if (time_ < 0.0) return out;
+  for (const Line& line : lines_) {
+    StressLinePeak p;
+    p.body = line.body_name;
+    p.line = line.source->name;
+    const Eigen::Index in = argInteriorMax(line.von_mises);
+    if (in >= 0) p.von_mises = line.von_mises(in), p.distance = line.distance(in);
+    if (line.hertz) {
+      const HertzContactPatch patch = hertzContactPatch(line.hertz->self, line.hertz->other, force_);
+      const HertzAxisMaximum hm = hertzAxisMaximum(line.hertz->self.poisson_ratio);
+      p.hertz = true;
+      p.hertz_von_mises = hm.von_mises_over_p0 * patch.max_pressure;
+      p.hertz_depth = hm.depth_over_a * patch.radius;
+    }
+    out.push_back(p);
+  }
+  return out;
+}
+
 }  // namespace ffriga

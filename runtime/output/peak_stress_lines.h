@@ -24,6 +24,14 @@ struct HertzPartner {
   HertzSphere self{}, other{};
 };
 
+// The subsurface maximum of one line at the recorded peak (for ffrsim's summary).
+struct StressLinePeak {
+  std::string body, line;
+  double von_mises = -1.0, distance = -1.0;              // interior maximum, Pa and m
+  bool hertz = false;
+  double hertz_von_mises = 0.0, hertz_depth = 0.0;       // Pa, m
+};
+
 class PeakStressLines {
  public:
   // partners[b]: body b's Hertz partner, if any (size numBodies, or empty: none).
@@ -33,6 +41,8 @@ class PeakStressLines {
   void record(double t, double force, const Eigen::VectorXd& y, const MultibodySystem& system);
   // Writes /stress_lines if something was recorded since the last write.
   void write(const h5::Context& c, hid_t file);
+  // Every line's interior maximum at the last recorded peak (empty before any record).
+  std::vector<StressLinePeak> peaks() const;
 
  private:
   struct Line {

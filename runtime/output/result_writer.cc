@@ -434,6 +434,7 @@ void ResultWriter::close() {
   series_.clear();
   if (frames_) frames_written_ = frames_->frames();
   frames_.reset();  // its datasets before the file
+  if (peak_) peaks_ = peak_->peaks();
   peak_.reset();
   file_.reset();
 }

@@ -50,6 +50,8 @@ class ResultWriter {
   // A step ending at t with state y has the largest contact force so far (N).
   void recordPeak(double t, double force, const Eigen::VectorXd& y, const MultibodySystem& system);
   long frames() const { return frames_ ? frames_->frames() : frames_written_; }
+  // The stress lines' maxima at the force peak recorded in this run (kept after close).
+  std::vector<StressLinePeak> stressLinePeaks() const { return peak_ ? peak_->peaks() : peaks_; }
   // One output row at time t (s) for state y.
   void append(double t, const Eigen::VectorXd& y, MultibodySystem& system);
   void flush();
@@ -127,6 +129,7 @@ class ResultWriter {
   std::unique_ptr<FrameWriter> frames_;
   std::unique_ptr<PeakStressLines> peak_;
   long frames_written_ = 0;
+  std::vector<StressLinePeak> peaks_;
   int flush_rows_ = 16;
   double flush_interval_ = 2.0;  // s of wall time
   std::chrono::steady_clock::time_point last_flush_;

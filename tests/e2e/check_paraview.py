@@ -4,7 +4,9 @@ pvpython, offscreen under xvfb-run, opens RESULT.xdmf, goes to the frame nearest
 peak, colours the bodies by von Mises stress and saves a PNG (tests/e2e/render_frame.py).
 Checked: ParaView read every frame time, point and cell; its bounds and von Mises range are
 the result file's; the frames put each body where /bodies says (rigid motion plus the
-magnified elastic displacement); the PNG is not blank.
+magnified elastic displacement); the PNG is not blank. Then the same scene with the
+axisymmetric bodies revolved (outputs.visualisation.revolve): ParaView reads hexahedra
+filling the spheres' full extent in x and z.
 
 usage: check_paraview.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
 """
@@ -110,4 +112,28 @@ check(background.mean() < 0.95 and colours >= 10,
 rows = np.where(~background.all(axis=1))[0]
 check(rows.size > 0 and rows.min() < image.shape[0] * 0.3 and rows.max() > image.shape[0] * 0.7,
       "both bodies are in the picture (above and below the contact)")
+
+# Revolved: 16 segments, a frame every 50 us.
+segments = 16
+with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as fs:
+    text = fs.read()
+assert "interval: 2.0e-6" in text
+text = text.replace("interval: 2.0e-6", f"interval: 5.0e-5\n    revolve: {segments}")
+revolved_scene = os.path.join(out, "impact2d_h3_revolved.yaml")
+with open(revolved_scene, "w") as fs:
+    fs.write(text)
+revolved = os.path.join(out, "impact2d_h3_revolved.h5")
+run([ffrsim, "-q", revolved_scene, "--sid-path", out, "-o", revolved])
+run(["xvfb-run", "-a", "pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"),
+     revolved[:-3] + ".xdmf", "5e-05", os.path.join(out, "revolved.png"),
+     os.path.join(out, "revolved.json")])
+with open(os.path.join(out, "revolved.json")) as fi:
+    rinfo = json.load(fi)
+rb = np.array(rinfo["bounds"]).reshape(3, 2)
+r = 0.01
+check(rinfo["points"] == segments * points and rinfo["cells"] == segments * cells,
+      f"revolved: ParaView read {rinfo['cells']} cells = {segments} x {cells} quadrilaterals")
+check(np.allclose(rb[0], [-r, r], rtol=1e-3) and np.allclose(rb[2], [-r, r], rtol=1e-3),
+      f"revolved: x and z extents {np.round(rb[0], 5).tolist()}, {np.round(rb[2], 5).tolist()} "
+      f"are the spheres' (r = {r} m; 0.1 % for the magnified deformation)")
 check.exit()

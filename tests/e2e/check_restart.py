@@ -106,7 +106,8 @@ with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
     check(rel < 1e-8, f"pendulums: final state within {rel:.2e} relative of the uninterrupted run")
     check(force < 1e-8, f"pendulums: force history within {force:.2e} of its peak")
 
-# 2. The Sect. 5 impact, SIGKILL (the record is what the last flush left).
+# 2. The Sect. 5 impact, SIGKILL (the record is what the last flush left), with its
+#    visualisation frames.
 subprocess.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"),
                 "-o", os.path.join(out, "sphere2d_h3.sid.h5")], check=True)
 scene = text_of("impact2d_h3", [("flush_rows: 100", "flush_rows: 50\n  flush_interval: 0.2\n"
@@ -135,6 +136,16 @@ with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
     check(abs(peak) < 1e-3 and abs(db / da - 1.0) < 1e-3,
           f"impact: force peak {peak:+.2e}, contact duration {db / da - 1.0:+.2e} relative to the "
           f"uninterrupted run")
+    # Visualisation frames (issue 12): the frames after the record were dropped and written
+    # again, the ones before kept bit for bit; the XDMF file names every frame.
+    fa_t, fb_t = a["visualisation/time"][()], b["visualisation/time"][()]
+    kept = int(np.sum(fa_t <= t_record))
+    pa, pb = a["visualisation/lower/points"], b["visualisation/lower/points"]
+    check(np.array_equal(fa_t, fb_t) and np.array_equal(pa[:kept], pb[:kept]),
+          f"impact: {len(fb_t)} frames at the reference's times, the first {kept} bit for bit")
+    with open(part[:-3] + ".xdmf") as x:
+        n_frames = x.read().count("<Time Value=")
+    check(n_frames == len(fb_t), f"impact: the XDMF file names {n_frames} frames")
 
 # 3. Continue a finished run; refusals.
 r = restart(ref, "--end-time", "1.5e-4")
