@@ -7,6 +7,7 @@
 
 #include "common/error.h"
 #include "common/hdf5_io.h"
+#include "common/provenance.h"
 
 namespace ffriga {
 
@@ -219,6 +220,8 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, p, "input_yaml", sid.input_yaml);
   h5::writeAttribute(c, p, "input_path", sid.input_path);
   h5::writeAttribute(c, p, "created_by", sid.created_by);
+  h5::writeAttribute(c, p, "git_revision", gitRevision());
+  h5::writeAttribute(c, p, "dependency_versions", dependencyVersionsText());
   Handle t = h5::createGroup(c, p, "stage_times_s");
   for (std::size_t i = 0; i < sid.stage_times_s.size(); ++i) {
     // Prefix keeps the stage order in HDF5's name-ordered listing.

@@ -66,19 +66,16 @@ struct ElementMatrices {
 // Scratch space of one thread.
 struct QuadratureWork {
   PatchBasis basis;
-  // Per Gauss point g, scaled by (w detJ [2 pi r])^(1/2): physical gradients (s x nb) and
-  // values (for the hoop strain), and the radius (axisymmetric).
-  std::vector<Eigen::MatrixXd> grad;
-  Eigen::MatrixXd values;  // Gauss points x nb
-  std::vector<double> radius;
-  Eigen::MatrixXd N;       // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
-  Eigen::MatrixXd B, Bs, DBs;  // strain operator of one point; stacked over the Gauss points
+  // Gauss points x nb, scaled by (w detJ [2 pi r])^(1/2): G[c] physical gradients d/dx_c,
+  // axisymmetric G[2] = R / r (the hoop strain; strain_operator.h isotropicStiffness).
+  Eigen::MatrixXd G[3];
+  Eigen::MatrixXd N;  // Gauss points x nb, scaled values (rho w detJ)^(1/2) R
 };
 
 struct QuadratureSetup {
   int d = 0, s = 0, ng = 0;
   std::array<QuadratureRule, 3> rules;
-  Eigen::MatrixXd D;  // constitutive matrix (strain_operator.h)
+  IsotropicMaterial material;
 };
 
 // Phase 1 of an element: the scaled values and physical gradients at its Gauss points.
@@ -103,9 +100,7 @@ void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
     if (nb < 0) {
       nb = static_cast<int>(w.basis.index.size());
       out.functions = w.basis.index;
-      w.grad.assign(ng, Eigen::MatrixXd::Zero(s, nb));
-      w.values.setZero(ng, nb);
-      w.radius.assign(ng, 0.0);
+      for (int c = 0; c < 3; ++c) w.G[c].setZero(ng, nb);
       w.N.setZero(ng, nb);
     }
     const Eigen::MatrixXd& R = w.basis.table;  // rows: value, d/dxi_a
@@ -133,31 +128,20 @@ void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
       for (int j = 0; j < nb; ++j) {
         double v = 0.0;
         for (int a = 0; a < d; ++a) v += Jinv(a, c) * R(1 + a, j);
-        w.grad[g](c, j) = sq * v;
+        w.G[c](g, j) = sq * v;
       }
     }
-    w.values.row(g) = sq * R.row(0);
-    w.radius[g] = x(0);
     w.N.row(g) = std::sqrt(model.density * dV) * R.row(0);
+    // Gauss points are interior: r > 0.
+    if (model.axisymmetric) w.G[2].row(g) = (sq / x(0)) * R.row(0);
   }
 }
 
-// Phase 2: element stiffness K_e = sum_g B_g^T D B_g (B_g scaled by the square root of the
-// Gauss weight: one product of the stacked operators) and the scalar mass matrix.
+// Phase 2: element stiffness K_e = sum_g B_g^T D B_g (strain_operator.h, factored form)
+// and the scalar mass matrix.
 void elementMatrices(const ElasticityModel& model, const QuadratureSetup& q, QuadratureWork& w,
                      ElementMatrices& out) {
-  const int s = q.s, ng = q.ng;
-  const int nb = static_cast<int>(out.functions.size());
-  const int ns = strainComponents(model.axisymmetric);
-  w.Bs.resize(ng * ns, s * nb);
-  w.DBs.resize(ng * ns, s * nb);
-  for (int g = 0; g < ng; ++g) {
-    // Gauss points are interior: r > 0 (the scaled values over r give the hoop strain).
-    strainOperator(w.grad[g], w.values.row(g), model.axisymmetric, w.radius[g], false, w.B);
-    w.Bs.middleRows(g * ns, ns) = w.B;
-    w.DBs.middleRows(g * ns, ns).noalias() = q.D * w.B;
-  }
-  out.Ke.noalias() = w.Bs.transpose() * w.DBs;
+  isotropicStiffness(w.G, q.material, model.axisymmetric, out.Ke);
   out.Me.noalias() = w.N.transpose() * w.N;
 }
 
@@ -272,7 +256,7 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
     setup.s = s;
     setup.ng = ng;
     setup.rules = rules;
-    setup.D = constitutiveMatrix(material, model.axisymmetric);
+    setup.material = material;
     // Elements in chunks of a fixed size (independent of the thread count): the element
     // matrices of a chunk are computed in parallel, then scattered by column owners.
     // 256 elements of degree 2 in 3D hold 15 MB of element matrices (84 MB for degree 3).

@@ -6,7 +6,8 @@
 //
 // with Lame constants lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)).
 // with D and B from preproc/strain_operator.h (the same pieces recover stresses,
-// preproc/stress_modes.h); per element K_e = sum_g B_g^T D B_g w_g detJ_g, one dense product.
+// preproc/stress_modes.h); per element K_e = sum_g B_g^T D B_g w_g detJ_g in the factored
+// form isotropicStiffness (products of the Gauss point gradient tables).
 //   * solid (3D): strains (e_xx, e_yy, e_zz, g_xy, g_yz, g_xz), dV = dx dy dz.
 //   * axisymmetric: the meridian section (x = r >= 0, y = axis), u = (u_r, u_y); strains
 //     (e_rr, e_yy, e_tt = u_r / r, g_ry), dV = 2 pi r dr dy, so that K and M are those of the

@@ -38,4 +38,13 @@ Eigen::MatrixXd constitutiveMatrix(const IsotropicMaterial& m, bool axisymmetric
 void strainOperator(const Eigen::MatrixXd& grad, const Eigen::Ref<const Eigen::RowVectorXd>& values,
                     bool axisymmetric, double radius, bool on_axis, Eigen::MatrixXd& B);
 
+// The element stiffness K_e = sum_g B_g^T D B_g of Gauss point tables, in factored form:
+// G[c] (Gauss points x nb) holds the scaled gradients (w_g detJ_g [2 pi r_g])^(1/2) dR_j/dx_c
+// (c < s) and, for axisymmetric bodies, G[2] the scaled hoop rows (...)^(1/2) R_j / r_g.
+// Evaluated from the products G_i^T G_j (solid: K_ab(i, j) = lambda H_ij + mu H_ji
+// + mu delta_ij tr H), the same matrix strainOperator and constitutiveMatrix give
+// (tests/stress_recovery_test.cc) in a ninth of the flops. Ke: s nb x s nb, order j s + c.
+void isotropicStiffness(const Eigen::MatrixXd G[3], const IsotropicMaterial& m, bool axisymmetric,
+                        Eigen::MatrixXd& Ke);
+
 }  // namespace ffriga

@@ -39,7 +39,9 @@ Simulates impacts between reduced flexible bodies (SID files written by igaprep)
 floating frame of reference with penalty contact between NURBS surfaces.
 
 options:
-  -o, --output FILE  result file (HDF5, schemas/result_format.md)
+  -o, --output FILE  result file (HDF5, schemas/result_format.md); with the scene key
+                     outputs.visualisation, RESULT.h5 gets RESULT.xdmf beside it: the
+                     bodies' frames for ParaView (its "XDMF Reader")
   --sid-path DIR     folder to search for SID files named in the scene (repeatable);
                      relative names are tried in the scene's folder first
   --restart FILE     continue the run of result FILE from its last complete row (an

@@ -12,6 +12,7 @@
 #include "common/spline_space.h"
 #include "common/von_mises.h"
 #include "preproc/geometry_builders.h"
+#include "preproc/strain_operator.h"
 #include "preproc/stress_modes.h"
 #include "preproc/visualisation_mesh.h"
 
@@ -185,4 +186,29 @@ TEST_CASE("SHA-256: FIPS 180-2 / NIST test vectors", "[sha256]") {
         "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
   CHECK(sha256Hex(std::string(1000000, 'a')) ==
         "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
+TEST_CASE("element stiffness: the factored form equals sum B^T D B", "[stress]") {
+  // Random Gauss point tables (3 points, 5 functions): isotropicStiffness against the
+  // strain operator and constitutive matrix that stress recovery uses.
+  const IsotropicMaterial m = steel();
+  for (const bool axi : {false, true}) {
+    const int s = axi ? 2 : 3, ng = 3, nb = 5;
+    Eigen::MatrixXd G[3];
+    for (int c = 0; c < 3; ++c) G[c] = Eigen::MatrixXd::Random(ng, nb) * 1e3;
+    Eigen::MatrixXd Ke;
+    isotropicStiffness(G, m, axi, Ke);
+    const Eigen::MatrixXd D = constitutiveMatrix(m, axi);
+    Eigen::MatrixXd reference = Eigen::MatrixXd::Zero(s * nb, s * nb), B;
+    for (int g = 0; g < ng; ++g) {
+      Eigen::MatrixXd grad(s, nb);
+      for (int c = 0; c < s; ++c) grad.row(c) = G[c].row(g);
+      // Axisymmetric: the hoop row G[2] = R / r, i.e. values G[2] at radius 1.
+      const Eigen::RowVectorXd values = G[2].row(g);
+      strainOperator(grad, values, axi, 1.0, false, B);
+      reference += B.transpose() * D * B;
+    }
+    INFO((axi ? "axisymmetric" : "solid"));
+    CHECK((Ke - reference).cwiseAbs().maxCoeff() <= 1e-12 * reference.cwiseAbs().maxCoeff());
+  }
 }

@@ -96,7 +96,10 @@ void PeakStressLines::write(const h5::Context& c, hid_t file) {
   h5::writeAttribute(c, root.id(), "description",
                      std::string("stresses along the SIDs' stress lines at the step of the "
                                  "largest contact force"));
-  for (const Line& line : lines_) {
+  const std::vector<StressLinePeak> summary = peaks();
+  for (std::size_t k = 0; k < lines_.size(); ++k) {
+    const Line& line = lines_[k];
+    const StressLinePeak& peak = summary[k];
     const StressLine& sl = (*line.source);
     Handle bg = h5::exists(root.id(), line.body_name) ? h5::openGroup(c, root.id(), line.body_name)
                                                        : h5::createGroup(c, root.id(), line.body_name);
@@ -110,10 +113,8 @@ void PeakStressLines::write(const h5::Context& c, hid_t file) {
     const Eigen::Index at = argMax(line.von_mises);
     h5::writeAttribute(c, g.id(), "von_mises_max_Pa", line.von_mises(at));
     h5::writeAttribute(c, g.id(), "von_mises_max_distance_m", line.distance(at));
-    const Eigen::Index in = argInteriorMax(line.von_mises);
-    h5::writeAttribute(c, g.id(), "von_mises_interior_max_Pa", in < 0 ? -1.0 : line.von_mises(in));
-    h5::writeAttribute(c, g.id(), "von_mises_interior_max_distance_m",
-                       in < 0 ? -1.0 : line.distance(in));
+    h5::writeAttribute(c, g.id(), "von_mises_interior_max_Pa", peak.von_mises);
+    h5::writeAttribute(c, g.id(), "von_mises_interior_max_distance_m", peak.distance);
     if (!line.hertz) continue;
     const HertzContactPatch patch = hertzContactPatch(line.hertz->self, line.hertz->other, force_);
     const double nu = line.hertz->self.poisson_ratio;
@@ -127,11 +128,10 @@ void PeakStressLines::write(const h5::Context& c, hid_t file) {
     h5::writeVector(c, g.id(), "hertz_von_mises", vm, "Pa");
     h5::writeVector(c, g.id(), "hertz_sigma_radial", sr, "Pa");
     h5::writeVector(c, g.id(), "hertz_sigma_axial", sz, "Pa");
-    const HertzAxisMaximum hm = hertzAxisMaximum(nu);
     h5::writeAttribute(c, g.id(), "hertz_contact_radius_m", patch.radius);
     h5::writeAttribute(c, g.id(), "hertz_max_pressure_Pa", patch.max_pressure);
-    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_Pa", hm.von_mises_over_p0 * patch.max_pressure);
-    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_depth_m", hm.depth_over_a * patch.radius);
+    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_Pa", peak.hertz_von_mises);
+    h5::writeAttribute(c, g.id(), "hertz_von_mises_max_depth_m", peak.hertz_depth);
   }
 }
 

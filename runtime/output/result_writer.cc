@@ -430,6 +430,10 @@ void ResultWriter::setObjectAttribute(const std::string& object, const std::stri
 
 void ResultWriter::close() {
   if (file_.id() < 0) return;
+  // The record again with the run's final figures: a flush by wall time right after the
+  // last row wrote the figures of the step before, and whether one happened depends on the
+  // machine's speed (same input, same bits).
+  if (rows_ > 0) resume_pending_ = true;
   flush();
   series_.clear();
   if (frames_) frames_written_ = frames_->frames();

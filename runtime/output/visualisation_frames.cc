@@ -68,6 +68,9 @@ struct FrameWriter::Body {
   std::vector<int> source;
   std::vector<double> angle;
   Eigen::MatrixXi cells;
+  // The mesh's modes in single precision (as the SID stores them; pictures): each frame
+  // reads them once, and half the bytes are half the time.
+  Eigen::MatrixXf Phi, stress;
   Handle group, points, displacement, von_mises;
   std::vector<float> pending_points, pending_displacement, pending_von_mises;
   long count() const { return static_cast<long>(source.size()); }
@@ -92,6 +95,8 @@ FrameWriter::FrameWriter(const std::string& result_path, hid_t file, const Multi
     b->name = body.name();
     b->mesh = &body.sid().mesh;
     b->axisymmetric = body.sid().model == "axisymmetric";
+    b->Phi = b->mesh->samples.Phi.cast<float>();
+    b->stress = b->mesh->samples.stress.cast<float>();
     const int np = static_cast<int>(b->mesh->samples.points.rows());
     const int segments = b->axisymmetric && settings_.revolve >= 3 ? settings_.revolve : 1;
     for (int k = 0; k < segments; ++k)
@@ -191,27 +196,44 @@ void FrameWriter::append(double t, const Eigen::VectorXd& y, const MultibodySyst
     const int s = static_cast<int>(S.points.cols());
     const Eigen::Index np = S.points.rows();
     // Frozen bodies have no elastic coordinates: rigid motion only.
-    const bool elastic = pose.q.size() > 0 && pose.q.size() == S.Phi.cols();
-    const Eigen::VectorXd u = elastic ? Eigen::VectorXd(S.Phi * pose.q) : Eigen::VectorXd::Zero(np * s);
-    const Eigen::VectorXd sigma = elastic ? Eigen::VectorXd(S.stress * pose.q) : Eigen::VectorXd::Zero(np * 6);
-    std::vector<double> vm(np);
-    for (Eigen::Index i = 0; i < np; ++i) vm[i] = vonMises(sigma.data() + 6 * i);
+    const bool elastic = pose.q.size() > 0 && pose.q.size() == b.Phi.cols();
+    Eigen::VectorXf u = Eigen::VectorXf::Zero(np * s), sigmaf = Eigen::VectorXf::Zero(np * 6);
+    if (elastic) {
+      const Eigen::VectorXf q = pose.q.cast<float>();
+      u.noalias() = b.Phi * q;
+      sigmaf.noalias() = b.stress * q;
+    }
+    const Eigen::VectorXd sigma = sigmaf.cast<double>();
+    // Per mesh point: deformed position and displacement in the world (or meridian) frame.
+    std::vector<double> vm(np), xw(3 * np, 0.0), dw(3 * np, 0.0);
+    for (Eigen::Index i = 0; i < np; ++i) {
+      vm[i] = vonMises(sigma.data() + 6 * i);
+      for (int r = 0; r < s; ++r) {
+        double x = pose.origin(r), dr = 0.0;
+        for (int c = 0; c < s; ++c) {
+          const double ui = u(s * i + c);
+          x += pose.A(r, c) * (S.points(i, c) + m * ui);
+          dr += pose.A(r, c) * ui;
+        }
+        xw[3 * i + r] = x, dw[3 * i + r] = dr;
+      }
+    }
     for (long p = 0; p < b.count(); ++p) {
       const int i = b.source[p];
-      const Eigen::VectorXd ui = u.segment(static_cast<Eigen::Index>(i) * s, s);
-      const Eigen::VectorXd x = pose.origin + pose.A * (S.points.row(i).transpose() + m * ui);
-      const Eigen::VectorXd d = pose.A * ui;
-      double X[3], D[3];
-      if (s == 3) {
-        for (int k = 0; k < 3; ++k) X[k] = x(k), D[k] = d(k);
+      const double* X = &xw[3 * i];
+      const double* D = &dw[3 * i];
+      if (s == 3 || b.angle[p] == 0.0) {
+        for (int k = 0; k < 3; ++k) {
+          b.pending_points.push_back(static_cast<float>(X[k]));
+          b.pending_displacement.push_back(static_cast<float>(D[k]));
+        }
       } else {  // meridian plane (x = radius, y = axis) turned by the angle about y
         const double ca = std::cos(b.angle[p]), sa = std::sin(b.angle[p]);
-        X[0] = x(0) * ca, X[1] = x(1), X[2] = x(0) * sa;
-        D[0] = d(0) * ca, D[1] = d(1), D[2] = d(0) * sa;
-      }
-      for (int k = 0; k < 3; ++k) {
-        b.pending_points.push_back(static_cast<float>(X[k]));
-        b.pending_displacement.push_back(static_cast<float>(D[k]));
+        const double Xr[3] = {X[0] * ca, X[1], X[0] * sa}, Dr[3] = {D[0] * ca, D[1], D[0] * sa};
+        for (int k = 0; k < 3; ++k) {
+          b.pending_points.push_back(static_cast<float>(Xr[k]));
+          b.pending_displacement.push_back(static_cast<float>(Dr[k]));
+        }
       }
       b.pending_von_mises.push_back(static_cast<float>(vm[i]));
     }

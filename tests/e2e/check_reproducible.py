@@ -47,8 +47,10 @@ def contents(path):
     return items
 
 
-def same_bits(a, b, what):
+def same_bits(a, b, what, ignore=()):
     ca, cb = contents(a), contents(b)
+    for k in ignore:
+        ca.pop(k, None), cb.pop(k, None)
     differ = sorted(k for k in set(ca) | set(cb) if ca.get(k) != cb.get(k))
     check(not differ and len(ca) > 0,
           f"{what}: {len(ca)} datasets and attributes equal bit for bit"
@@ -60,7 +62,22 @@ def run(cmd):
     if r.returncode != 0:
         print(r.stdout + r.stderr)
         check(False, f"{' '.join(cmd)} exited with {r.returncode}")
-        check.exit()
+        # Flushes (by rows and by wall time) must not change what the file holds at the end: the
+# 2D impact flushed after every row against flushed every 100 rows. A flush right after the
+# last row once left the restart record with the figures of the step before.
+with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
+    text = f.read()
+assert "flush_rows: 100" in text
+path = os.path.join(out, "impact2d_h3_flushing.yaml")
+with open(path, "w") as f:
+    f.write(text.replace("flush_rows: 100", "flush_rows: 1\n  flush_interval: 1.0e-9"))
+run([ffrsim, "-q", "--threads", "2", path, "--sid-path", out, "-o",
+     os.path.join(out, "impact2d_h3_flushing.h5")])
+same_bits(os.path.join(out, "impact2d_h3_2a.h5"), os.path.join(out, "impact2d_h3_flushing.h5"),
+          "ffrsim impact2d_h3 flushed after every row against every 100 rows",
+          ignore=("/@scene_path", "/@scene_yaml"))  # the two scenes differ in their flushes
+
+check.exit()
 
 
 # igaprep: an axisymmetric body (2D assembly), the rod (3D, markers) and the 3D sphere
@@ -109,5 +126,20 @@ for scene, end_time, twice in (("impact2d_h3", None, True), ("impact3d_coarse", 
     same_bits(a, os.path.join(out, f"{scene}_1a.h5"), f"ffrsim {scene}, 2 threads against 1")
     if twice:
         same_bits(a, os.path.join(out, f"{scene}_2b.h5"), f"ffrsim {scene}, two runs on 2 threads")
+
+# Flushes (by rows and by wall time) must not change what the file holds at the end: the
+# 2D impact flushed after every row against flushed every 100 rows. A flush right after the
+# last row once left the restart record with the figures of the step before.
+with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
+    text = f.read()
+assert "flush_rows: 100" in text
+path = os.path.join(out, "impact2d_h3_flushing.yaml")
+with open(path, "w") as f:
+    f.write(text.replace("flush_rows: 100", "flush_rows: 1\n  flush_interval: 1.0e-9"))
+run([ffrsim, "-q", "--threads", "2", path, "--sid-path", out, "-o",
+     os.path.join(out, "impact2d_h3_flushing.h5")])
+same_bits(os.path.join(out, "impact2d_h3_2a.h5"), os.path.join(out, "impact2d_h3_flushing.h5"),
+          "ffrsim impact2d_h3 flushed after every row against every 100 rows",
+          ignore=("/@scene_path", "/@scene_yaml"))  # the two scenes differ in their flushes
 
 check.exit()
