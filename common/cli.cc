@@ -26,6 +26,8 @@ CommonOptions parseCommonOptions(int argc, char** argv,
       o.verbosity = 2;
     } else if (a == "-o" || a == "--output") {
       o.output = value("-o");
+    } else if (a == "--set") {
+      o.sets.push_back(value("--set"));
     } else if (a == "--threads") {
       const std::string v = value("--threads");
       char* end = nullptr;

@@ -23,6 +23,7 @@ struct CommonOptions {
   int threads = 0;    // 0: OpenMP default
   std::vector<std::string> positional;
   std::string output;  // -o FILE
+  std::vector<std::string> sets;  // --set KEY=VALUE, in order (common/yaml_overrides.h)
 };
 
 // Parses argv. Unknown options and missing values throw UsageError. `extra` may consume a

@@ -127,6 +127,7 @@ struct FlexibleBodySid {
   std::string frame;            // "buckens" or "tangent"
   std::string input_yaml;       // the body file's text
   std::string input_path;       // the body file as given to igaprep
+  std::string input_overrides;  // igaprep's --set KEY=VALUE, one per line ("" for none)
   std::string created_by;       // program and version, e.g. "igaprep 0.1.0"
   std::string reduction;        // "craig_bampton" or "modal"
   int normal_modes = 0;         // fixed-interface (CB) or free-free (modal) modes in the basis

@@ -219,6 +219,7 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   Handle p = h5::createGroup(c, file, "provenance");
   h5::writeAttribute(c, p, "input_yaml", sid.input_yaml);
   h5::writeAttribute(c, p, "input_path", sid.input_path);
+  h5::writeAttribute(c, p, "overrides", sid.input_overrides);
   h5::writeAttribute(c, p, "created_by", sid.created_by);
   h5::writeAttribute(c, p, "git_revision", gitRevision());
   h5::writeAttribute(c, p, "dependency_versions", dependencyVersionsText());
@@ -350,6 +351,8 @@ FlexibleBodySid readSid(const std::string& path) {
   Handle p = h5::openGroup(c, file, "provenance");
   sid.input_yaml = h5::readStringAttribute(c, p, "input_yaml");
   sid.input_path = h5::readStringAttribute(c, p, "input_path");
+  if (h5::hasAttribute(p, "overrides"))  // provenance only: optional
+    sid.input_overrides = h5::readStringAttribute(c, p, "overrides");
   Handle t = h5::openGroup(c, p, "stage_times_s");
   const int na = H5Aget_num_attrs(t);
   if (na < 0) c.fail("stage_times_s: cannot count attributes");

@@ -92,13 +92,60 @@ int yamlLine(const YAML::Node& node) {
   return m.line >= 0 ? m.line + 1 : 0;
 }
 
+namespace {
+
+// Whether `node` is `tree` or lies inside it (identity, not equality).
+bool within(const YAML::Node& node, const YAML::Node& tree) {
+  if (!node.IsDefined() || !tree.IsDefined()) return false;
+  if (node.is(tree)) return true;
+  if (tree.IsSequence()) {
+    for (const YAML::Node& child : tree)
+      if (within(node, child)) return true;
+  } else if (tree.IsMap()) {
+    for (const auto& kv : tree)
+      if (within(node, kv.second)) return true;
+  }
+  return false;
+}
+
+// An error key "a.b[2].c" as an override's dotted key "a.b.2.c".
+std::string dotted(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '[') {
+      out += '.';
+    } else if (c != ']') {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The override that put `node` into the tree, or, for nodes without a place in the file
+// (a key an override added), the last override whose key is the error's key or above it.
+const YamlOverride* overrideOf(const YamlDocument& doc, const YAML::Node& node,
+                               const std::string& key) {
+  const YamlOverride* from = nullptr;
+  for (const YamlOverride& o : doc.overrides)
+    if (within(node, o.node)) from = &o;
+  if (from || doc.overrides.empty() || yamlLine(node) > 0) return from;
+  const std::string k = dotted(key);
+  for (const YamlOverride& o : doc.overrides)
+    if (k == o.key || k.rfind(o.key + ".", 0) == 0) from = &o;
+  return from;
+}
+
+}  // namespace
+
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message) {
   Str s;
   s << doc.path;
-  const int line = yamlLine(node);
+  const YamlOverride* from = overrideOf(doc, node, key);
+  const int line = from ? 0 : yamlLine(node);
   if (line > 0) s << ":" << line;
   s << ": ";
+  if (from) s << "--set '" << from->text << "': ";
   if (!key.empty()) s << "key '" << key << "': ";
   s << message;
   return InputError(s);

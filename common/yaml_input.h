@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <yaml-cpp/yaml.h>
 
@@ -13,10 +14,19 @@
 
 namespace ffriga {
 
+// A command-line override applied to a document (common/yaml_overrides.h): its text
+// "KEY=VALUE" and the node it put into the tree (errors about it name the override).
+struct YamlOverride {
+  std::string text;  // KEY=VALUE
+  std::string key;   // KEY, dotted (list indices as components)
+  YAML::Node node;
+};
+
 struct YamlDocument {
   std::string path;  // as given by the user
   std::string text;  // the file's contents, kept for provenance
   YAML::Node root;
+  std::vector<YamlOverride> overrides;  // --set, in order
 };
 
 // Reads and parses a YAML file. Throws InputError if the file cannot be read, is not valid
@@ -28,7 +38,8 @@ YamlDocument parseYamlText(const std::string& text, const std::string& path);
 // 1-based line of a node, 0 if unknown.
 int yamlLine(const YAML::Node& node);
 
-// "FILE:LINE: key 'KEY': MESSAGE" as an InputError.
+// "FILE:LINE: key 'KEY': MESSAGE" as an InputError; for a node an override put into the
+// tree (or one inside it): "FILE: --set 'KEY=VALUE': key 'KEY': MESSAGE".
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message);
 

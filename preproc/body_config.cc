@@ -8,6 +8,7 @@
 #include "common/json_schema.h"
 #include "common/refinement.h"
 #include "common/schemas.h"
+#include "common/yaml_overrides.h"
 #include "preproc/contact_region.h"
 #include "preproc/geometry_builders.h"
 
@@ -483,8 +484,11 @@ BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes) {
   return c;
 }
 
-BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes) {
-  return parseBodyConfig(loadYamlFile(path), memory_limit_bytes);
+BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes,
+                          const std::vector<std::string>& sets) {
+  YamlDocument doc = loadYamlFile(path);
+  applyOverrides(doc, sets);
+  return parseBodyConfig(std::move(doc), memory_limit_bytes);
 }
 
 NurbsPatch refinedPatch(const BodyConfig& config) {

@@ -92,7 +92,10 @@ struct BodyConfig {
 // matches the geometry). Throws InputError (file, key, line).
 // memory_limit_bytes: inputs whose size estimate (preproc/size_estimate.h) exceeds it are
 // refused before refinement; 0: this machine's physical memory.
-BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes = 0.0);
+// sets: command-line overrides "KEY=VALUE" (common/yaml_overrides.h), applied before the
+// schema check.
+BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes = 0.0,
+                          const std::vector<std::string>& sets = {});
 BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes = 0.0);
 
 // The globally refined patch: degree elevation, then uniform knot insertion, then the

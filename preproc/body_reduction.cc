@@ -103,6 +103,7 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   sid.model = toString(config.model);
   sid.input_yaml = config.source.text;
   sid.input_path = config.source.path;
+  for (const YamlOverride& o : config.source.overrides) sid.input_overrides += o.text + "\n";
   sid.created_by = Str() << "igaprep " << kVersion;
   sid.reduction = config.reduction.method;
   sid.frame = config.reduction.frame;

@@ -44,6 +44,10 @@ with its collocation points and the markers, written to one HDF5 file
 options:
   -o, --output FILE  write the SID file (atomically: nothing is left behind on failure)
   --info FILE        print a summary of a SID file and exit
+  --set KEY=VALUE    override a key of the body file (repeatable), e.g.
+                     --set material.youngs_modulus=2e11 --set refinement.insert_knots.1=30:
+                     dotted path, list items by index, a YAML value; checked against the
+                     schema like the file, recorded in the SID (/provenance overrides)
   -q, --quiet        print nothing but errors (no progress, no summary)
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
@@ -212,7 +216,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (!info.empty()) {
-      if (!o.positional.empty() || !o.output.empty())
+      if (!o.positional.empty() || !o.output.empty() || !o.sets.empty())
         throw ffriga::UsageError("--info takes one SID file and no other arguments");
       printSidSummary(ffriga::readSid(info), info);
       return 0;
@@ -229,7 +233,7 @@ int main(int argc, char** argv) {
     const double limit =
         maxMemoryGiB > 0.0 ? maxMemoryGiB * 1024.0 * 1024.0 * 1024.0 : ffriga::physicalMemoryBytes();
     // The size estimate is checked while loading, before the refinement allocates.
-    const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0], limit);
+    const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0], limit, o.sets);
     if (o.verbosity > 1) {
       const ffriga::SizeEstimate size =
           config.global_reference

@@ -18,6 +18,7 @@
 #include "common/output_path.h"
 #include "common/provenance.h"
 #include "common/sha256.h"
+#include "common/yaml_overrides.h"
 #include "common/version.h"
 #include "runtime/contact/hertz_reference.h"
 #include "runtime/output/restart_record.h"
@@ -48,6 +49,10 @@ options:
                      interrupted, failed or finished run), appending to FILE; the scene and
                      the SID files are the ones the run used
   --end-time T       with --restart: continue up to T seconds (default: the run's end time)
+  --set KEY=VALUE    override a key of the scene file (repeatable), e.g.
+                     --set contacts.0.penalty_factor=3e17 --set integrator.end_time=5e-5:
+                     dotted path, list items by index, a YAML value; checked against the
+                     schema like the file, recorded in the result (attribute overrides)
   -q, --quiet        print nothing but errors
   -v, --verbose      print more detail
   --threads N        number of OpenMP threads
@@ -151,8 +156,9 @@ ffriga::Scene loadRestartScene(const ffriga::RestartRecord& rec, const RunOption
                                const ffriga::SidLoader& load) {
   namespace fs = std::filesystem;
   for (const std::string& f : rec.sid_files) sid_paths.push_back(fs::path(f).parent_path().string());
-  ffriga::Scene scene =
-      ffriga::buildScene(ffriga::parseYamlText(rec.scene_yaml, rec.scene_path), sid_paths, load);
+  ffriga::YamlDocument doc = ffriga::parseYamlText(rec.scene_yaml, rec.scene_path);
+  ffriga::applyOverrides(doc, rec.overrides);  // the run's --set, as it had them
+  ffriga::Scene scene = ffriga::buildScene(std::move(doc), sid_paths, load);
   for (std::size_t b = 0; b < scene.sid_files.size() && b < rec.sid_files.size(); ++b) {
     std::error_code ec;
     if (!scene.sid_files[b].empty() && !fs::equivalent(scene.sid_files[b], rec.sid_files[b], ec)) {
@@ -180,7 +186,7 @@ ffriga::Scene loadRestartScene(const ffriga::RestartRecord& rec, const RunOption
 
 // Root attributes a later restart needs: where the scene was, which SIDs, the end time.
 void writeRunAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene,
-                        const std::string& scene_path) {
+                        const std::string& scene_path, const std::vector<std::string>& sets) {
   namespace fs = std::filesystem;
   std::string sids;
   for (const std::string& f : scene.sid_files)
@@ -188,6 +194,7 @@ void writeRunAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene
   writer.setAttribute("scene_path", fs::absolute(scene_path).lexically_normal().string());
   writer.setAttribute("sid_files", sids);
   writer.setAttribute("end_time_s", scene.settings.end_time);
+  writer.setAttribute("overrides", ffriga::overridesText(sets));
 }
 
 // Provenance (schemas/result_format.md): the program, its source revision and libraries,
@@ -301,6 +308,9 @@ int main(int argc, char** argv) {
     if (restart) {
       if (!o.positional.empty() || !o.output.empty())
         throw ffriga::UsageError("--restart takes the result file only: no scene file, no -o");
+      if (!o.sets.empty())
+        throw ffriga::UsageError("--set goes with a scene file: a restart continues the run with "
+                                 "the overrides it had");
     } else {
       if (o.positional.size() != 1) throw ffriga::UsageError("expected one scene file (see --help)");
       if (o.output.empty()) throw ffriga::UsageError("missing -o RESULT.h5 (see --help)");
@@ -320,7 +330,8 @@ int main(int argc, char** argv) {
     ffriga::RestartRecord record;
     if (restart) record = ffriga::readRestartRecord(output);
     ffriga::Scene scene = restart ? loadRestartScene(record, ro, ro.sid_paths, guardedLoadSid)
-                                  : ffriga::loadScene(o.positional[0], ro.sid_paths, guardedLoadSid);
+                                  : ffriga::loadScene(o.positional[0], ro.sid_paths, guardedLoadSid,
+                                                      o.sets);
     if (ffriga::interruptRequested()) {
       std::fprintf(stderr, "ffrsim: interrupted by %s while loading the scene; %s\n",
                    ffriga::interruptSignalName().c_str(),
@@ -335,7 +346,7 @@ int main(int argc, char** argv) {
       writer.setAttribute("restarts", record.restarts + 1);
       writer.setAttribute("end_time_s", scene.settings.end_time);
     } else {
-      writeRunAttributes(writer, scene, o.positional[0]);
+      writeRunAttributes(writer, scene, o.positional[0], o.sets);
       writeModelAttributes(writer, scene, o.verbosity);
     }
     writeProvenance(writer, scene);

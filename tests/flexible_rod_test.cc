@@ -55,8 +55,10 @@ std::string sidFolder() {
   return dir;
 }
 
+// The scene "lives" in the SID folder, so that SID names never resolve against the working
+// directory (where the sid.* tests leave SID files of their own).
 Scene rodScene(const std::string& text) {
-  return buildScene(parseYamlText(text, "inline.yaml"), {sidFolder()},
+  return buildScene(parseYamlText(text, sidFolder() + "/inline.yaml"), {sidFolder()},
                     [](const std::string& path) { return readSid(path); });
 }
 

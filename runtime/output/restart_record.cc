@@ -4,6 +4,7 @@
 
 #include "common/error.h"
 #include "common/hdf5_io.h"
+#include "common/yaml_overrides.h"
 #include "runtime/output/result_writer.h"
 
 namespace ffriga {
@@ -30,6 +31,8 @@ RestartRecord readRestartRecord(const std::string& path) {
   RestartRecord r;
   r.status = h5::readStringAttribute(c, f, "status");
   r.scene_yaml = h5::readStringAttribute(c, f, "scene_yaml");
+  if (h5::hasAttribute(f, "overrides"))
+    r.overrides = overridesFromText(h5::readStringAttribute(c, f, "overrides"));
   r.scene_path = h5::readStringAttribute(c, f, "scene_path");
   r.end_time = h5::readDoubleAttribute(c, f, "end_time_s");
   r.restarts = H5Aexists(f, "restarts") ? h5::readIntAttribute(c, f, "restarts") : 0;

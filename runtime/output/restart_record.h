@@ -22,6 +22,7 @@ struct RestartRecord {
   // From the root attributes:
   std::string status;
   std::string scene_yaml;
+  std::vector<std::string> overrides;  // the run's --set KEY=VALUE, applied to scene_yaml
   std::string scene_path;              // absolute, as at the first run
   std::vector<std::string> sid_files;  // absolute paths of the SIDs the run used
   double end_time = 0.0;               // s, the end time the run was going to

@@ -8,6 +8,7 @@
 
 #include "common/json_schema.h"
 #include "common/schemas.h"
+#include "common/yaml_overrides.h"
 #include "runtime/bodies/axisymmetric_body.h"
 #include "runtime/bodies/quasi_static_rule.h"
 #include "runtime/bodies/floating_body.h"
@@ -60,8 +61,10 @@ std::string resolveSid(const YamlDocument& doc, const YAML::Node& node, const st
 }  // namespace
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& sid_paths,
-                const SidLoader& load_sid) {
-  return buildScene(loadYamlFile(path), sid_paths, load_sid);
+                const SidLoader& load_sid, const std::vector<std::string>& sets) {
+  YamlDocument doc = loadYamlFile(path);
+  applyOverrides(doc, sets);
+  return buildScene(std::move(doc), sid_paths, load_sid);
 }
 
 namespace {

@@ -65,8 +65,10 @@ struct InitialPose {
   Eigen::VectorXd q, qd;
 };
 
+// sets: command-line overrides "KEY=VALUE" (common/yaml_overrides.h), applied before the
+// schema check.
 Scene loadScene(const std::string& path, const std::vector<std::string>& sid_paths,
-                const SidLoader& load_sid);
+                const SidLoader& load_sid, const std::vector<std::string>& sets = {});
 
 // The same for a document already in memory (tests); relative SID names resolve against
 // the folder of doc.path.

@@ -1,6 +1,7 @@
 """The ParaView output of a real run opens in real ParaView (issue 12): igaprep and ffrsim run
 the flagship scene (impact2d_h3, which asks for visualisation frames), then Debian's
-pvpython, offscreen under xvfb-run, opens RESULT.xdmf, goes to the frame nearest the force
+pvpython, on a virtual X display (Xvfb, started here: xvfb-run's wait for the server
+raced under load in CI, "bad X server connection"), opens RESULT.xdmf, goes to the frame nearest the force
 peak, colours the bodies by von Mises stress and saves a PNG (tests/e2e/render_frame.py).
 Checked: ParaView read every frame time, point and cell; its bounds and von Mises range are
 the result file's; the frames put each body where /bodies says (rigid motion plus the
@@ -10,11 +11,14 @@ filling the spheres' full extent in x and z.
 
 usage: check_paraview.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
 """
+import contextlib
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 import h5py
 import matplotlib.image
@@ -36,10 +40,58 @@ def run(cmd):
     return r
 
 
-for tool in ("pvpython", "xvfb-run"):
+for tool in ("pvpython", "Xvfb"):
     if shutil.which(tool) is None:
         check(False, f"{tool} not found (apt-get install paraview python3-paraview xvfb: "
                      f".ci/install-deps)")
+        check.exit()
+
+
+@contextlib.contextmanager
+def virtual_display():
+    """An Xvfb server on a free display number; yields its DISPLAY once it accepts
+    connections and stops it afterwards. Readiness by the X server's own protocol (Xserver(1):
+    started with SIGUSR1 ignored, it sends SIGUSR1 to its parent when it is ready), not by
+    its socket appearing: under load a client that came between the two was refused."""
+    number = next(n for n in range(99, 400)
+                  if not os.path.exists(f"/tmp/.X{n}-lock")
+                  and not os.path.exists(f"/tmp/.X11-unix/X{n}"))
+    ready = []
+    previous = signal.signal(signal.SIGUSR1, lambda *_: ready.append(True))
+
+    def ignore_usr1():
+        signal.signal(signal.SIGUSR1, signal.SIG_IGN)
+
+    # -noreset: no reset (and no second SIGUSR1) when the last client leaves.
+    server = subprocess.Popen(["Xvfb", f":{number}", "-screen", "0", "1024x768x24", "-nolisten",
+                               "tcp", "-noreset"], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, preexec_fn=ignore_usr1)
+    try:
+        for _ in range(600):  # 30 s
+            if ready or server.poll() is not None:
+                break
+            time.sleep(0.05)
+        if not ready:
+            check(False, f"Xvfb :{number} did not get ready (exit {server.poll()})")
+            check.exit()
+        yield f":{number}"
+    finally:
+        server.terminate()
+        server.wait()
+        signal.signal(signal.SIGUSR1, previous)  # only now: no signal can come any more
+
+
+def render(xdmf_file, t, png, info):
+    """pvpython render_frame.py on a virtual display."""
+    with virtual_display() as display:
+        env = dict(os.environ, DISPLAY=display)
+        r = subprocess.run(["pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"),
+                            xdmf_file, repr(t), png, info], capture_output=True, text=True,
+                           env=env)
+    if r.returncode != 0:
+        print(r.stdout + r.stderr)
+        check(False, f"pvpython render_frame.py {os.path.basename(xdmf_file)} exited with "
+                     f"{r.returncode}")
         check.exit()
 
 sid = os.path.join(out, "sphere2d_h3.sid.h5")
@@ -86,8 +138,7 @@ with h5py.File(result, "r") as f, h5py.File(sid, "r") as s:
     vm = np.concatenate(vm)
 
 png, info_json = os.path.join(out, "peak.png"), os.path.join(out, "peak.json")
-run(["xvfb-run", "-a", "pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"), xdmf,
-     repr(t), png, info_json])
+render(xdmf, t, png, info_json)
 with open(info_json) as fi:
     info = json.load(fi)
 check(len(info["times"]) == len(frames) and np.allclose(info["times"], frames, rtol=1e-12, atol=0),
@@ -124,9 +175,8 @@ with open(revolved_scene, "w") as fs:
     fs.write(text)
 revolved = os.path.join(out, "impact2d_h3_revolved.h5")
 run([ffrsim, "-q", revolved_scene, "--sid-path", out, "-o", revolved])
-run(["xvfb-run", "-a", "pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"),
-     revolved[:-3] + ".xdmf", "5e-05", os.path.join(out, "revolved.png"),
-     os.path.join(out, "revolved.json")])
+render(revolved[:-3] + ".xdmf", 5e-05, os.path.join(out, "revolved.png"),
+       os.path.join(out, "revolved.json"))
 with open(os.path.join(out, "revolved.json")) as fi:
     rinfo = json.load(fi)
 rb = np.array(rinfo["bounds"]).reshape(3, 2)

@@ -1,5 +1,6 @@
-"""Runs inside ParaView's pvpython (tests/e2e/check_paraview.py starts it offscreen): opens
-an XDMF file of ffrsim, goes to time T, colours the bodies by von Mises stress, saves a PNG
+"""Runs inside ParaView's pvpython (tests/e2e/check_paraview.py starts it on a virtual X
+display): opens an XDMF file of ffrsim, goes to time T, colours the bodies by von Mises
+stress, saves a PNG
 and writes what ParaView read (times, bounds, von Mises range, points, cells) as JSON.
 
 usage: pvpython render_frame.py RESULT.xdmf T OUT.png OUT.json
