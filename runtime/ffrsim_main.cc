@@ -74,7 +74,33 @@ ffriga::FlexibleBodySid loadSid(const std::string& path) {
 #endif
 }
 
-void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r) {
+// Hertz's prediction for each contact pair of the scene (empty where it has none),
+// computed once for the result file and the summary.
+using HertzReferences = std::vector<std::optional<ffriga::HertzReference>>;
+HertzReferences hertzReferences(const ffriga::Scene& scene) {
+  HertzReferences out;
+  for (int c = 0; c < scene.system->numContacts(); ++c)
+    out.push_back(ffriga::hertzReference(scene, c));
+  return out;
+}
+
+// The run against Hertz: relative differences of the force peak and, once the contact has
+// ended, of its duration.
+struct HertzDifference {
+  double force = 0.0;
+  bool contact_ended = false;
+  double duration = 0.0;
+};
+HertzDifference differenceFrom(const ffriga::HertzReference& h, const ffriga::SimulationReport& r) {
+  HertzDifference d;
+  d.force = r.max_normal_force / h.impact.max_force - 1.0;
+  d.contact_ended = r.contact_begin >= 0.0 && r.contact_end >= 0.0;
+  if (d.contact_ended) d.duration = (r.contact_end - r.contact_begin) / h.impact.duration - 1.0;
+  return d;
+}
+
+void printSummary(const ffriga::Scene& scene, const HertzReferences& hertz,
+                  const ffriga::SimulationReport& r) {
   const ffriga::IntegratorStats& s = r.stats;
   std::printf("ffrsim %s: scene '%s': %s\n", ffriga::kVersion, scene.name.c_str(),
               r.status.c_str());
@@ -103,17 +129,14 @@ void printSummary(const ffriga::Scene& scene, const ffriga::SimulationReport& r)
                 1e6 * (end - r.contact_begin));
   }
   for (int c = 0; c < scene.system->numContacts(); ++c) {
-    const auto h = ffriga::hertzReference(scene, c);
+    const auto& h = hertz[c];
     if (!h) continue;
     std::printf("  Hertz (approach speed %.4g m/s): maximum force %.6g N, duration %.4g us\n",
                 h->approach_speed, h->impact.max_force, 1e6 * h->impact.duration);
     if (scene.system->numContacts() == 1) {
-      std::printf("  simulation / Hertz: force %+.2f %%",
-                  100.0 * (r.max_normal_force / h->impact.max_force - 1.0));
-      if (r.contact_begin >= 0.0 && r.contact_end >= 0.0) {
-        std::printf(", duration %+.2f %%",
-                    100.0 * ((r.contact_end - r.contact_begin) / h->impact.duration - 1.0));
-      }
+      const HertzDifference d = differenceFrom(*h, r);
+      std::printf("  simulation / Hertz: force %+.2f %%", 100.0 * d.force);
+      if (d.contact_ended) std::printf(", duration %+.2f %%", 100.0 * d.duration);
       std::printf("\n");
     }
   }
@@ -224,11 +247,12 @@ void writeProvenance(ffriga::ResultWriter& writer, const ffriga::Scene& scene) {
 // /contacts/<pair>), at the root too when the scene has one pair; each body's Hertz
 // partner for the stresses along its lines.
 std::vector<std::optional<ffriga::HertzPartner>> writeHertzReferences(ffriga::ResultWriter& writer,
-                                                                      const ffriga::Scene& scene) {
+                                                                      const ffriga::Scene& scene,
+                                                                      const HertzReferences& hertz) {
   const ffriga::MultibodySystem& sys = *scene.system;
   std::vector<std::optional<ffriga::HertzPartner>> partners(sys.numBodies());
   for (int c = 0; c < sys.numContacts(); ++c) {
-    const auto h = ffriga::hertzReference(scene, c);
+    const auto& h = hertz[c];
     if (!h) continue;
     const std::string group = "/contacts/" + sys.contact(c).name();
     const std::pair<const char*, double> values[] = {
@@ -250,18 +274,14 @@ std::vector<std::optional<ffriga::HertzPartner>> writeHertzReferences(ffriga::Re
   return partners;
 }
 
-// The run against Hertz (root attributes, one contact pair with a Hertz reference):
-// relative differences of the force peak and the contact duration.
-void writeHertzComparison(ffriga::ResultWriter& writer, const ffriga::Scene& scene,
+// Root attributes force_vs_hertz and duration_vs_hertz (one contact pair with a Hertz
+// reference).
+void writeHertzComparison(ffriga::ResultWriter& writer, const HertzReferences& hertz,
                           const ffriga::SimulationReport& r) {
-  if (scene.system->numContacts() != 1) return;
-  const auto h = ffriga::hertzReference(scene, 0);
-  if (!h) return;
-  writer.setAttribute("force_vs_hertz", r.max_normal_force / h->impact.max_force - 1.0);
-  if (r.contact_begin >= 0.0 && r.contact_end >= 0.0) {
-    writer.setAttribute("duration_vs_hertz",
-                        (r.contact_end - r.contact_begin) / h->impact.duration - 1.0);
-  }
+  if (hertz.size() != 1 || !hertz[0]) return;
+  const HertzDifference d = differenceFrom(*hertz[0], r);
+  writer.setAttribute("force_vs_hertz", d.force);
+  if (d.contact_ended) writer.setAttribute("duration_vs_hertz", d.duration);
 }
 
 void writeModelAttributes(ffriga::ResultWriter& writer, const ffriga::Scene& scene, int verbosity) {
@@ -350,13 +370,14 @@ int main(int argc, char** argv) {
       writeModelAttributes(writer, scene, o.verbosity);
     }
     writeProvenance(writer, scene);
-    writer.enablePeakStressLines(*scene.system, writeHertzReferences(writer, scene));
+    const HertzReferences hertz = hertzReferences(scene);
+    writer.enablePeakStressLines(*scene.system, writeHertzReferences(writer, scene, hertz));
     if (scene.visualisation.enabled) writer.enableFrames(scene.visualisation, *scene.system);
     const ffriga::SimulationReport r = ffriga::simulate(*scene.system, scene.y0, scene.settings,
                                                         writer, restart ? &record : nullptr);
-    writeHertzComparison(writer, scene, r);
+    writeHertzComparison(writer, hertz, r);
     writer.close();
-    if (o.verbosity > 0) printSummary(scene, r);
+    if (o.verbosity > 0) printSummary(scene, hertz, r);
     if (o.verbosity > 0) printStressLinePeaks(writer.stressLinePeaks());
     if (o.verbosity > 0 && writer.frames() > 0) {
       std::printf("  %ld visualisation frames: open %s in ParaView\n", writer.frames(),

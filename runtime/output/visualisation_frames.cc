@@ -64,16 +64,17 @@ struct FrameWriter::Body {
   std::string name;
   const VisualisationMesh* mesh = nullptr;
   bool axisymmetric = false;
-  // Output point p shows mesh point source[p] turned by angle[p] about the y axis.
-  std::vector<int> source;
-  std::vector<double> angle;
+  // Output point p = k np + i shows mesh point i turned by 2 pi k / segments about the y
+  // axis (segments = 1: the points themselves).
+  int segments = 1;
   Eigen::MatrixXi cells;
   // The mesh's modes in single precision (as the SID stores them; pictures): each frame
   // reads them once, and half the bytes are half the time.
   Eigen::MatrixXf Phi, stress;
   Handle group, points, displacement, von_mises;
   std::vector<float> pending_points, pending_displacement, pending_von_mises;
-  long count() const { return static_cast<long>(source.size()); }
+  long meshPoints() const { return static_cast<long>(mesh->samples.points.rows()); }
+  long count() const { return segments * meshPoints(); }
 };
 
 std::string xdmfPathFor(const std::string& result_path) {
@@ -97,13 +98,9 @@ FrameWriter::FrameWriter(const std::string& result_path, hid_t file, const Multi
     b->axisymmetric = body.sid().model == "axisymmetric";
     b->Phi = b->mesh->samples.Phi.cast<float>();
     b->stress = b->mesh->samples.stress.cast<float>();
-    const int np = static_cast<int>(b->mesh->samples.points.rows());
+    const int np = static_cast<int>(b->meshPoints());
     const int segments = b->axisymmetric && settings_.revolve >= 3 ? settings_.revolve : 1;
-    for (int k = 0; k < segments; ++k)
-      for (int p = 0; p < np; ++p) {
-        b->source.push_back(p);
-        b->angle.push_back(segments == 1 ? 0.0 : 2.0 * kPi * k / segments);
-      }
+    b->segments = segments;
     if (segments == 1) {
       b->cells = b->mesh->cells;
     } else {  // each quadrilateral swept from ring k to ring k + 1 (closed)
@@ -141,9 +138,11 @@ FrameWriter::FrameWriter(const std::string& result_path, hid_t file, const Multi
                  H5Dclose);
   truncateFrames(c, time_.id(), written_, 0, 0);
   for (auto& b : bodies_) openBody(*b, group_.id(), written_);
-  next_ = times_.empty() ? 0.0
-                         : (std::floor(times_.back() / settings_.interval * (1.0 + 1e-12)) + 1.0) *
-                               settings_.interval;
+  next_ = times_.empty() ? 0.0 : frameAfter(times_.back());
+}
+
+double FrameWriter::frameAfter(double t) const {
+  return (std::floor(t / settings_.interval * (1.0 + 1e-12)) + 1.0) * settings_.interval;
 }
 
 FrameWriter::~FrameWriter() = default;
@@ -186,7 +185,7 @@ bool FrameWriter::due(double t) const {
 
 void FrameWriter::append(double t, const Eigen::VectorXd& y, const MultibodySystem& system) {
   times_.push_back(t);
-  next_ = (std::floor(t / settings_.interval * (1.0 + 1e-12)) + 1.0) * settings_.interval;
+  next_ = frameAfter(t);
   const double m = settings_.magnification;
   for (auto& bp : bodies_) {
     Body& b = *bp;
@@ -218,24 +217,23 @@ void FrameWriter::append(double t, const Eigen::VectorXd& y, const MultibodySyst
         xw[3 * i + r] = x, dw[3 * i + r] = dr;
       }
     }
-    for (long p = 0; p < b.count(); ++p) {
-      const int i = b.source[p];
-      const double* X = &xw[3 * i];
-      const double* D = &dw[3 * i];
-      if (s == 3 || b.angle[p] == 0.0) {
-        for (int k = 0; k < 3; ++k) {
-          b.pending_points.push_back(static_cast<float>(X[k]));
-          b.pending_displacement.push_back(static_cast<float>(D[k]));
+    for (int k = 0; k < b.segments; ++k) {
+      const double angle = 2.0 * kPi * k / b.segments;
+      const double ca = std::cos(angle), sa = std::sin(angle);
+      for (Eigen::Index i = 0; i < np; ++i) {
+        const double* X = &xw[3 * i];
+        const double* D = &dw[3 * i];
+        // Solids and the unturned section as they are; a meridian plane (x = radius,
+        // y = axis) turned about y.
+        const bool turned = s == 2 && k > 0;
+        const double Xr[3] = {turned ? X[0] * ca : X[0], X[1], turned ? X[0] * sa : X[2]};
+        const double Dr[3] = {turned ? D[0] * ca : D[0], D[1], turned ? D[0] * sa : D[2]};
+        for (int c = 0; c < 3; ++c) {
+          b.pending_points.push_back(static_cast<float>(Xr[c]));
+          b.pending_displacement.push_back(static_cast<float>(Dr[c]));
         }
-      } else {  // meridian plane (x = radius, y = axis) turned by the angle about y
-        const double ca = std::cos(b.angle[p]), sa = std::sin(b.angle[p]);
-        const double Xr[3] = {X[0] * ca, X[1], X[0] * sa}, Dr[3] = {D[0] * ca, D[1], D[0] * sa};
-        for (int k = 0; k < 3; ++k) {
-          b.pending_points.push_back(static_cast<float>(Xr[k]));
-          b.pending_displacement.push_back(static_cast<float>(Dr[k]));
-        }
+        b.pending_von_mises.push_back(static_cast<float>(vm[i]));
       }
-      b.pending_von_mises.push_back(static_cast<float>(vm[i]));
     }
   }
 }

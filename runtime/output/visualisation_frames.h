@@ -62,6 +62,8 @@ class FrameWriter {
   struct Body;
   void createBody(Body& b, hid_t parent);
   void openBody(Body& b, hid_t parent, long keep);
+  // The first multiple of the interval after t (frames fall on the rows at or after it).
+  double frameAfter(double t) const;
   std::string path_;
   hid_t file_;
   VisualisationSettings settings_;

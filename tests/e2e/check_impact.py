@@ -31,12 +31,7 @@ result = os.path.join(out, scene + ".h5")
 for cmd in ([igaprep, "-q", os.path.join(source, "configs", "bodies", body + ".yaml"), "-o", sid],
             [ffrsim, os.path.join(source, "configs", "scenes", scene + ".yaml"), "--sid-path", out,
              "-o", result]):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    print(r.stdout, end="")
-    if r.returncode != 0:
-        print(r.stderr)
-        check(False, f"{os.path.basename(cmd[0])} exited with {r.returncode}")
-        check.exit()
+    print(check.run(cmd).stdout, end="")
 
 with h5py.File(result, "r") as f:
     a = f.attrs

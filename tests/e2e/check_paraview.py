@@ -31,15 +31,6 @@ os.makedirs(out, exist_ok=True)
 check = Checks()
 
 
-def run(cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        print(r.stdout + r.stderr)
-        check(False, f"{' '.join(cmd)} exited with {r.returncode}")
-        check.exit()
-    return r
-
-
 for tool in ("pvpython", "Xvfb"):
     if shutil.which(tool) is None:
         check(False, f"{tool} not found (apt-get install paraview python3-paraview xvfb: "
@@ -84,25 +75,19 @@ def virtual_display():
 def render(xdmf_file, t, png, info):
     """pvpython render_frame.py on a virtual display."""
     with virtual_display() as display:
-        env = dict(os.environ, DISPLAY=display)
-        r = subprocess.run(["pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"),
-                            xdmf_file, repr(t), png, info], capture_output=True, text=True,
-                           env=env)
-    if r.returncode != 0:
-        print(r.stdout + r.stderr)
-        check(False, f"pvpython render_frame.py {os.path.basename(xdmf_file)} exited with "
-                     f"{r.returncode}")
-        check.exit()
+        check.run(["pvpython", os.path.join(source, "tests", "e2e", "render_frame.py"), xdmf_file,
+                   repr(t), png, info], env=dict(os.environ, DISPLAY=display))
 
 sid = os.path.join(out, "sphere2d_h3.sid.h5")
 result = os.path.join(out, "impact2d_h3.h5")
 xdmf = os.path.join(out, "impact2d_h3.xdmf")
-run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"), "-o", sid])
+check.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"), "-o",
+           sid])
 for stale in (result, xdmf):
     if os.path.exists(stale):
         os.remove(stale)
-run([ffrsim, "-q", os.path.join(source, "configs", "scenes", "impact2d_h3.yaml"), "--sid-path",
-     out, "-o", result])
+check.run([ffrsim, "-q", os.path.join(source, "configs", "scenes", "impact2d_h3.yaml"),
+           "--sid-path", out, "-o", result])
 check(os.path.exists(xdmf), f"ffrsim wrote {os.path.basename(xdmf)} beside the result")
 
 with h5py.File(result, "r") as f, h5py.File(sid, "r") as s:
@@ -174,7 +159,7 @@ revolved_scene = os.path.join(out, "impact2d_h3_revolved.yaml")
 with open(revolved_scene, "w") as fs:
     fs.write(text)
 revolved = os.path.join(out, "impact2d_h3_revolved.h5")
-run([ffrsim, "-q", revolved_scene, "--sid-path", out, "-o", revolved])
+check.run([ffrsim, "-q", revolved_scene, "--sid-path", out, "-o", revolved])
 render(revolved[:-3] + ".xdmf", 5e-05, os.path.join(out, "revolved.png"),
        os.path.join(out, "revolved.json"))
 with open(os.path.join(out, "revolved.json")) as fi:

@@ -6,7 +6,6 @@ collocation points). Attributes are compared too, except the measured times.
 usage: check_reproducible.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
 """
 import os
-import subprocess
 import sys
 
 import h5py
@@ -57,22 +56,14 @@ def same_bits(a, b, what, ignore=()):
           + (f"; differ: {', '.join(differ[:8])}" if differ else ""))
 
 
-def run(cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        print(r.stdout + r.stderr)
-        check(False, f"{' '.join(cmd)} exited with {r.returncode}")
-        check.exit()
-
-
 # igaprep: an axisymmetric body (2D assembly), the rod (3D, markers) and the 3D sphere
 # (CHOLMOD supernodal, hundreds of constraint modes, degenerate eigenspaces of the sphere).
 for stem, twice in (("sphere2d_h3", True), ("rod", True), ("sphere3d_coarse", False)):
     body = os.path.join(source, "configs", "bodies", stem + ".yaml")
     runs = [("2", "a"), ("1", "a")] + ([("2", "b")] if twice else [])
     for threads, tag in runs:
-        run([igaprep, "-q", "--threads", threads, body, "-o",
-             os.path.join(out, f"{stem}_{threads}{tag}.sid.h5")])
+        check.run([igaprep, "-q", "--threads", threads, body, "-o",
+                   os.path.join(out, f"{stem}_{threads}{tag}.sid.h5")])
     same_bits(os.path.join(out, f"{stem}_2a.sid.h5"), os.path.join(out, f"{stem}_1a.sid.h5"),
               f"igaprep {stem}, 2 threads against 1")
     if twice:
@@ -101,8 +92,8 @@ for scene, end_time, twice in (("impact2d_h3", None, True), ("impact3d_coarse", 
     path = scene_copy(scene, end_time)
     runs = [("2", "a"), ("1", "a")] + ([("2", "b")] if twice else [])
     for threads, tag in runs:
-        run([ffrsim, "-q", "--threads", threads, path, "--sid-path", out, "-o",
-             os.path.join(out, f"{scene}_{threads}{tag}.h5")])
+        check.run([ffrsim, "-q", "--threads", threads, path, "--sid-path", out, "-o",
+                   os.path.join(out, f"{scene}_{threads}{tag}.h5")])
     a = os.path.join(out, f"{scene}_2a.h5")
     with h5py.File(a, "r") as f:
         rows = f["time"].shape[0]
@@ -121,8 +112,8 @@ assert "flush_rows: 100" in text
 path = os.path.join(out, "impact2d_h3_flushing.yaml")
 with open(path, "w") as f:
     f.write(text.replace("flush_rows: 100", "flush_rows: 1\n  flush_interval: 1.0e-9"))
-run([ffrsim, "-q", "--threads", "2", path, "--sid-path", out, "-o",
-     os.path.join(out, "impact2d_h3_flushing.h5")])
+check.run([ffrsim, "-q", "--threads", "2", path, "--sid-path", out, "-o",
+           os.path.join(out, "impact2d_h3_flushing.h5")])
 same_bits(os.path.join(out, "impact2d_h3_2a.h5"), os.path.join(out, "impact2d_h3_flushing.h5"),
           "ffrsim impact2d_h3 flushed after every row against every 100 rows",
           ignore=("/@scene_path", "/@scene_yaml"))  # the two scenes differ in their flushes

@@ -1,5 +1,7 @@
 """Shared pieces of the end-to-end checks: a check list that prints ok / FAIL per item and
-the exit code, and the result file's status as text (h5py may return bytes)."""
+the exit code, commands that must succeed, and the result file's status as text (h5py may
+return bytes)."""
+import subprocess
 import sys
 
 
@@ -16,6 +18,16 @@ class Checks:
         status = f.attrs["status"]
         status = status.decode() if isinstance(status, bytes) else status
         self(status == "completed", f"status {status}")
+
+    def run(self, cmd, **kwargs):
+        """Runs `cmd` (a list); if it exits non-zero, prints its output, records the failure
+        and exits. Returns the finished process (output captured as text)."""
+        r = subprocess.run(cmd, capture_output=True, text=True, **kwargs)
+        if r.returncode != 0:
+            print(r.stdout + r.stderr)
+            self(False, f"{' '.join(cmd)} exited with {r.returncode}")
+            self.exit()
+        return r
 
     def exit(self):
         sys.exit(1 if self.failures else 0)
