@@ -9,8 +9,13 @@
 
 #include "common/error.h"
 #include "common/git_revision.h"
+#include "common/version.h"
 
 namespace ffriga {
+
+std::string versionLine(const std::string& program) {
+  return program + " " + kVersion + " (git " + gitRevision() + ")";
+}
 
 std::string gitRevision() { return kGitRevision; }
 

@@ -11,6 +11,10 @@
 namespace ffriga {
 
 std::string gitRevision();
+// The line --version prints: "PROGRAM VERSION (git REVISION)". The workflow of studies
+// hashes it into the names of cached SIDs and runs (benchmarks/studies/study_file.py), so
+// that another build of another source tree never reuses what this one made.
+std::string versionLine(const std::string& program);
 // (library, version) in a fixed order: Eigen, HDF5, SUNDIALS, SuiteSparse, yaml-cpp.
 std::vector<std::pair<std::string, std::string>> dependencyVersions();
 // "Eigen 3.4.0, HDF5 1.10.8, ..." (one line).

@@ -22,6 +22,7 @@
 
 #include "common/cli.h"
 #include "common/output_path.h"
+#include "common/provenance.h"
 #include "common/sid_file.h"
 #include "common/version.h"
 #include "preproc/body_config.h"
@@ -212,7 +213,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (o.version) {
-      std::cout << "igaprep " << ffriga::kVersion << "\n";
+      std::cout << ffriga::versionLine("igaprep") << "\n";
       return 0;
     }
     if (!info.empty()) {

@@ -321,7 +321,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (o.version) {
-      std::cout << "ffrsim " << ffriga::kVersion << "\n";
+      std::cout << ffriga::versionLine("ffrsim") << "\n";
       return 0;
     }
     const bool restart = !ro.restart.empty();
