@@ -93,7 +93,7 @@ def build_sid(bin_dir, sid, sid_dir, threads, version):
     record = {"sid": os.path.basename(out), "body_file": sid.body_file,
               "overrides": sid.overrides, "igaprep_version": version, "hash": sid.hash,
               "exit_code": code, "wall_s": wall, "cpu_s": cpu, "peak_rss_mib": rss,
-              "threads": threads}
+              "threads": threads, "slurm_job_id": os.environ.get("SLURM_JOB_ID")}
     if code == 0:
         record.update(status="built", bytes=os.path.getsize(out), sha256=_sha256(out),
                       attributes=_sid_attributes(out))
@@ -159,7 +159,8 @@ def run_scene(bin_dir, study, run, sid_dir, run_dir, threads):
     summary = {"run": run.id, "study": study.name,
                "values": {k: value_text(v) for k, v in run.values.items()},
                "scene": run.scene, "scene_overrides": run.scene_overrides,
-               "sids": {n: s.stem + ".sid.h5" for n, s in run.sids.items()}}
+               "sids": {n: s.stem + ".sid.h5" for n, s in run.sids.items()},
+               "slurm_job_id": os.environ.get("SLURM_JOB_ID")}
     records = {}
     for name, sid in run.sids.items():
         with open(os.path.join(sid_dir, sid.stem + ".json"), encoding="utf-8") as f:
