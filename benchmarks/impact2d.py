@@ -1,61 +1,57 @@
 #!/usr/bin/python3
-"""Reproduces paper Sect. 5 (two axisymmetric steel spheres, 0.1 m/s each, 0.1 ms).
+"""Reproduces paper Sect. 5 (two axisymmetric steel spheres, 0.1 m/s each, 0.1 ms) from the
+studies of benchmarks/studies/, run by their Snakemake workflow.
 
-For every 2D model (configs/scenes/impact2d_{h,g}{3..6}.yaml) it builds the SID file with
-igaprep, runs ffrsim --repeat times and prints: maximum contact force and contact duration
-against Hertz (the result file's attributes, computed by ffrsim from common/hertz.h), and the median wall time
-of the time integration (root attribute wall_time_s) with the hierarchical/global ratio
-(paper Fig. 9). --sweep runs the penalty-factor sweep of Fig. 7 on one model; --plot writes
-the force history against Hertz (Fig. 8) as a PNG.
+* Table 1 with Fig. 8-9: the study table1_models.yaml (every 2D model sphere2d_{h,g}{3..6}
+  at 1e17 N/m^3). Prints ndof, nq and interface points next to the paper's, the force peak
+  and contact duration against Hertz, the preprocessing and integration wall times and the
+  hierarchical/global ratio (Fig. 9); --plot draws the force histories against Hertz
+  (Fig. 8) from the runs' result files.
+* --sweep: also the study fig7_penalty.yaml (every model over 8 penalty factors, Fig. 7;
+  64 runs, several minutes); its picture is the study's own PNG.
 
-usage: benchmarks/impact2d.py [--build build] [--repeat 3] [--models h3,g3,...]
-                              [--sweep h3] [--plot out.png] [--json out.json]
+Each figure is read from the studies' tables (build/studies/<study>/<study>.csv and
+_timings.csv), so a second invocation only prints: the workflow reruns nothing.
+
+usage: benchmarks/impact2d.py [--build build] [--out build/studies] [-j 2] [--sweep]
+                              [--plot out.png] [--json out.json]
 """
 import argparse
+import csv
 import json
 import os
-import re
-import statistics
 import subprocess
 import sys
-import tempfile
 
 import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+STUDIES = os.path.join(ROOT, "benchmarks", "studies")
+# Paper Table 1: model -> (ndof, normal modes, interface control points).
+PAPER = {"h3": (3856, 10, 41), "h4": (2884, 10, 40), "h5": (2728, 10, 42),
+         "h6": (1708, 10, 41), "g3": (9216, 10, 41), "g4": (7440, 10, 40),
+         "g5": (6726, 10, 40), "g6": (5368, 10, 39)}
 
 
-def run_scene(build, scene, sid_dir, out, penalty=None):
-    path = scene
-    if penalty is not None:
-        text = open(scene).read()
-        text = re.sub(r"penalty_factor: .*", f"penalty_factor: {penalty:.6g}", text)
-        fd, path = tempfile.mkstemp(suffix=".yaml", dir=sid_dir)
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-    p = subprocess.run([os.path.join(build, "bin", "ffrsim"), path, "--sid-path", sid_dir,
-                        "-o", out], capture_output=True, text=True)
+def run_study(name, a):
+    """The study through its workflow; returns its table and timings rows."""
+    study = os.path.join(STUDIES, f"{name}.yaml")
+    cmd = ["snakemake", "-s", os.path.join(STUDIES, "Snakefile"), "-j", str(a.jobs), "-q",
+           "--config", f"study={study}", f"bin={os.path.join(a.build, 'bin')}", f"out={a.out}"]
+    p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
-        return {"error": p.stderr.strip()}
-    r = {}
-    with h5py.File(out, "r") as f:  # the result file's headline attributes (format 4)
-        a = f.attrs
-        if "hertz_max_force_N" in a:
-            r["hertz_force_N"] = float(a["hertz_max_force_N"])
-            r["hertz_duration_us"] = 1e6 * float(a["hertz_duration_s"])
-            r["force_error_pct"] = 100 * float(a["force_vs_hertz"])
-            if "duration_vs_hertz" in a:
-                r["duration_error_pct"] = 100 * float(a["duration_vs_hertz"])
-        r["wall_time_s"] = float(a["wall_time_s"])
-        pair = list(f["contacts"].keys())[0]
-        r["time"] = f["time"][:].tolist()
-        r["normal_force"] = f["contacts"][pair]["normal_force"][:].tolist()
-        r["max_force_N"] = float(a["max_contact_force_N"])  # over the steps, not the rows
-    return r
+        sys.exit(f"impact2d: the study {name} failed (exit {p.returncode}):\n"
+                 f"{p.stdout[-2000:]}{p.stderr[-2000:]}")
+    base = os.path.join(a.out, name, name)
+    with open(base + ".csv", newline="") as f:
+        table = list(csv.DictReader(f))
+    with open(base + "_timings.csv", newline="") as f:
+        timings = {r["run"]: r for r in csv.DictReader(f)}
+    return table, timings
 
 
-def hertz_curve(fmax, duration, n=400):
+def hertz_curve(fmax, duration):
     """Hertz force history by integrating m* d'' = -K d^1.5 (shape only: scaled to fmax)."""
     # Dimensionless: x'' = -x^1.5 from (0, 1); scale to the printed fmax and duration.
     dt, x, v, xs = 1e-4, 0.0, 1.0, [0.0]
@@ -72,95 +68,93 @@ def hertz_curve(fmax, duration, n=400):
     return t, f / f.max() * fmax
 
 
+def print_table1(table, timings):
+    print("Paper Sect. 5, Table 1 and Fig. 8-9 (study table1_models; penalty 1e17 N/m^3)")
+    print(f"{'model':6} {'ndof':>6} {'paper':>6} {'nq':>4} {'iface':>5} {'paper':>5} "
+          f"{'F_max N':>9} {'dF %':>6} {'T us':>7} {'dT %':>6} {'igaprep s':>9} "
+          f"{'ffrsim s':>9}")
+    for r in table:
+        if r["status"] != "completed":
+            print(f"{r['model']:6} {r['status']}")
+            continue
+        t, paper = timings[r["run"]], PAPER.get(r["model"], ("-", "-", "-"))
+        print(f"{r['model']:6} {r['sid:ndof']:>6} {paper[0]:>6} {r['sid:nq']:>4} "
+              f"{r['sid:n_interface_control_points']:>5} {paper[2]:>5} "
+              f"{float(r['max_contact_force_N']):9.3f} {100 * float(r['force_vs_hertz']):+6.2f} "
+              f"{1e6 * float(r['contact_duration_s']):7.2f} "
+              f"{100 * float(r['duration_vs_hertz']):+6.2f} {float(t['igaprep_wall_s']):9.2f} "
+              f"{float(t['wall_time_s']):9.2f}")
+    r0 = next((r for r in table if r["status"] == "completed"), None)
+    if r0:
+        print(f"Hertz: {float(r0['hertz_max_force_N']):.3f} N, "
+              f"{1e6 * float(r0['hertz_duration_s']):.2f} us")
+    by = {r["model"]: timings[r["run"]] for r in table if r["status"] == "completed"}
+    for n in "3456":
+        if f"h{n}" in by and f"g{n}" in by:
+            print(f"nlvl = {n}: integration wall time hierarchical / global = "
+                  f"{float(by['h' + n]['wall_time_s']) / float(by['g' + n]['wall_time_s']):.2f}"
+                  f", preprocessing {float(by['h' + n]['igaprep_wall_s']) / float(by['g' + n]['igaprep_wall_s']):.2f}")
+
+
+def print_sweep(table):
+    print("\nPaper Fig. 7 (study fig7_penalty): force peak - Hertz [%] over c_p [N/m^3]")
+    penalties = list(dict.fromkeys(r["penalty_factor"] for r in table))
+    print(f"{'model':6} " + " ".join(f"{p:>8}" for p in penalties))
+    for m in dict.fromkeys(r["model"] for r in table):
+        cells = []
+        for p in penalties:
+            r = next(r for r in table if r["model"] == m and r["penalty_factor"] == p)
+            cells.append(f"{100 * float(r['force_vs_hertz']):+8.2f}"
+                         if r["status"] == "completed" else f"{'failed':>8}")
+        print(f"{m:6} " + " ".join(cells))
+
+
+def plot_fig8(table, a):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    done = [r for r in table if r["status"] == "completed"]
+    th, fh = hertz_curve(float(done[0]["hertz_max_force_N"]), float(done[0]["hertz_duration_s"]))
+    ax.plot(th * 1e6, fh, "k-", lw=2.5, label="Hertz")
+    for r in done:
+        with open(os.path.join(a.out, "table1_models", "runs", r["run"], "summary.json")) as f:
+            result = json.load(f)["result"]
+        with h5py.File(result, "r") as f:
+            pair = list(f["contacts"].keys())[0]
+            ax.plot(f["time"][:] * 1e6, f["contacts"][pair]["normal_force"][:], lw=1,
+                    label=f"sphere2d_{r['model']}")
+    ax.set_xlabel("time [µs]")
+    ax.set_ylabel("normal contact force [N]")
+    ax.set_title("Two axisymmetric steel spheres, 0.1 m/s each (paper Fig. 8)")
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(a.plot, dpi=120)
+    print(f"\nplot: {a.plot}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--models", default="h3,h4,h5,h6,g3,g4,g5,g6")
-    ap.add_argument("--sweep", default=None, help="model for the penalty sweep, e.g. h3")
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", "studies"))
+    ap.add_argument("-j", "--jobs", type=int, default=2)
+    ap.add_argument("--sweep", action="store_true", help="also the Fig. 7 penalty sweep")
     ap.add_argument("--plot", default=None)
     ap.add_argument("--json", default=None)
     a = ap.parse_args()
-    sid_dir = tempfile.mkdtemp(prefix="impact2d_")
-    models = a.models.split(",")
-    results = {}
-    summary = {}
-    print(f"{'model':6} {'F_max N':>9} {'Hertz N':>9} {'dF %':>7} {'T us':>7} {'dT %':>7} "
-          f"{'wall s (median of %d)' % a.repeat:>22}")
-    for m in models:
-        body = os.path.join(ROOT, "configs", "bodies", f"sphere2d_{m}.yaml")
-        subprocess.run([os.path.join(a.build, "bin", "igaprep"), "-q", body, "-o",
-                        os.path.join(sid_dir, f"sphere2d_{m}.sid.h5")], check=True)
-        scene = os.path.join(ROOT, "configs", "scenes", f"impact2d_{m}.yaml")
-        runs = [run_scene(a.build, scene, sid_dir, os.path.join(sid_dir, f"r_{m}.h5"))
-                for _ in range(a.repeat)]
-        if "error" in runs[0]:
-            print(f"{m:6} failed: {runs[0]['error']}")
-            continue
-        r = runs[0]
-        r["wall_median_s"] = statistics.median(x["wall_time_s"] for x in runs)
-        results[m] = r
-        print(f"{m:6} {r['max_force_N']:9.3f} {r.get('hertz_force_N', float('nan')):9.3f} "
-              f"{r.get('force_error_pct', float('nan')):+7.2f} "
-              f"{r.get('hertz_duration_us', float('nan')) * (1 + r.get('duration_error_pct', 0) / 100):7.2f} "
-              f"{r.get('duration_error_pct', float('nan')):+7.2f} {r['wall_median_s']:22.3f}")
-    for n in "3456":
-        if f"h{n}" in results and f"g{n}" in results:
-            print(f"nlvl = {n}: wall time hierarchical / global = "
-                  f"{results['h' + n]['wall_median_s'] / results['g' + n]['wall_median_s']:.2f}")
+    table, timings = run_study("table1_models", a)
+    print_table1(table, timings)
+    summary = {"table1_models": {"rows": table, "timings": list(timings.values())}}
     if a.sweep:
-        print(f"\npenalty sweep (paper Fig. 7) on {a.sweep}; penalty factor in N/m^3")
-        scene = os.path.join(ROOT, "configs", "scenes", f"impact2d_{a.sweep}.yaml")
-        sweep = []
-        # Beyond 3e18 N/m^3 the equations are so stiff that one run takes many minutes.
-        for cp in [1e15, 3e15, 1e16, 3e16, 1e17, 3e17, 1e18, 3e18]:
-            r = run_scene(a.build, scene, sid_dir, os.path.join(sid_dir, "sweep.h5"), cp)
-            if "error" in r:
-                print(f"  cp = {cp:.0e}: failed: {r['error']}")
-                continue
-            sweep.append((cp, r.get("force_error_pct", float("nan"))))
-            print(f"  cp = {cp:.0e}: F_max = {r['max_force_N']:.3f} N "
-                  f"({r.get('force_error_pct', float('nan')):+.2f} % from Hertz), "
-                  f"wall {r['wall_time_s']:.2f} s")
-        summary["sweep"] = {"model": a.sweep, "penalty_N_per_m3": [c for c, _ in sweep],
-                            "force_error_pct": [e for _, e in sweep]}
-        if a.plot and sweep:
-            import matplotlib
-            matplotlib.use("Agg")
-            import matplotlib.pyplot as plt
-            fig, ax = plt.subplots(figsize=(6, 4))
-            ax.semilogx([c for c, _ in sweep], [e for _, e in sweep], "o-")
-            ax.axhline(0.0, color="k", lw=0.8)
-            ax.set_xlabel("penalty factor c_p [N/m³]")
-            ax.set_ylabel("max. force − Hertz [%]")
-            ax.set_title(f"Penalty sweep, sphere2d_{a.sweep} (paper Fig. 7)")
-            fig.tight_layout()
-            out = os.path.splitext(a.plot)[0] + "_sweep.png"
-            fig.savefig(out, dpi=120)
-            print(f"wrote {out}")
-    if a.plot and results:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        fig, ax = plt.subplots(figsize=(7, 4.5))
-        first = next(iter(results.values()))
-        th, fh = hertz_curve(first["hertz_force_N"], first["hertz_duration_us"] * 1e-6)
-        ax.plot(th * 1e6, fh, "k-", lw=2.5, label="Hertz")
-        for m, r in results.items():
-            ax.plot(np.array(r["time"]) * 1e6, r["normal_force"], lw=1, label=f"sphere2d_{m}")
-        ax.set_xlabel("time [µs]")
-        ax.set_ylabel("normal contact force [N]")
-        ax.set_title("Two axisymmetric steel spheres, 0.1 m/s each (paper Fig. 8)")
-        ax.legend()
-        fig.tight_layout()
-        fig.savefig(a.plot, dpi=120)
-        print(f"\nplot: {a.plot}")
+        sweep, _ = run_study("fig7_penalty", a)
+        print_sweep(sweep)
+        print(f"picture: {os.path.join(a.out, 'fig7_penalty', 'fig7_penalty_penalty_factor.png')}")
+        summary["fig7_penalty"] = {"rows": sweep}
+    if a.plot:
+        plot_fig8(table, a)
     if a.json:
-        for r in results.values():
-            r.pop("time", None)
-            r.pop("normal_force", None)
-        summary["models"] = results
-        json.dump(summary, open(a.json, "w"), indent=1)
+        with open(a.json, "w") as f:
+            json.dump(summary, f, indent=1)
 
 
 if __name__ == "__main__":

@@ -20,7 +20,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
-from study_file import ROOT, Study, StudyError  # noqa: E402
+from study_file import ROOT, Study, StudyError, value_text  # noqa: E402
 import study_jobs  # noqa: E402
 import study_table  # noqa: E402
 
@@ -43,7 +43,7 @@ def cmd_check(a, study, runs):
         extra = f" with {' '.join(s.overrides)}" if s.overrides else ""
         print(f"  SID {s.stem}.sid.h5 from {os.path.relpath(s.body_file)}{extra}")
     for r in runs:
-        values = ", ".join(f"{k} = {study_table.value_text(v)}" for k, v in r.values.items())
+        values = ", ".join(f"{k} = {value_text(v)}" for k, v in r.values.items())
         print(f"  run {r.id}: {values}")
     return 0
 

@@ -126,14 +126,26 @@ def _schema_message(error):
     if v == "enum":
         return path, (f"expected one of {', '.join(map(str, error.validator_value))}, "
                       f"found {json.dumps(inst)}")
+    if v in ("minimum", "maximum"):
+        sign = ">=" if v == "minimum" else "<="
+        return path, f"expected a number {sign} {error.validator_value}, found {json.dumps(inst)}"
+    if v in ("minItems", "minLength"):
+        return path, f"expected at least {error.validator_value} " \
+                     f"{'items' if v == 'minItems' else 'characters'}, found {json.dumps(inst)}"
     if v == "pattern":
         return path, f"expected a name matching {error.validator_value}, found {json.dumps(inst)}"
     return path, error.message
 
 
-def _validate(doc):
+def _schema():
     with open(SCHEMA, encoding="utf-8") as f:
         schema = json.load(f)
+    # Its $id is a name, not an address: local references (#/$defs/...) resolve in the file.
+    schema.pop("$id", None)
+    return schema
+
+
+def _validate(doc, schema):
     validator = jsonschema.Draft202012Validator(schema)
     errors = sorted(validator.iter_errors(doc.data),
                     key=lambda e: (doc.lines.get(tuple(e.absolute_path), 0), len(e.path)))
@@ -209,7 +221,8 @@ class Study:
         self.file = path
         self.folder = os.path.dirname(self.path)
         self._doc = doc = _Document(path)
-        _validate(doc)
+        schema = _schema()
+        _validate(doc, schema)
         d = doc.data
         self.name = d["study"]
         self.description = d.get("description", "")
@@ -217,7 +230,7 @@ class Study:
         self.bodies = d.get("bodies", {})
         self.parameters = [Parameter(p, i, doc) for i, p in enumerate(d["parameters"])]
         self.combine = d.get("combine", "product")
-        schema_props = json.load(open(SCHEMA))["properties"]
+        schema_props = schema["properties"]
         self.collect = d.get("collect", schema_props["collect"]["default"])
         self.plot = d.get("plot", schema_props["plot"]["default"])
         self.resources = d.get("resources", {})

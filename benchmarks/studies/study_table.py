@@ -133,7 +133,8 @@ def plot(study, table, parameter, path):
             ax.set_xticklabels(xs_all)
         if figure.endswith("_vs_hertz"):
             ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_ylabel(figure)
+        ax.set_ylabel(f"{figure} (relative: 0.01 = 1 %)" if figure.endswith("_vs_hertz")
+                      else figure)
         if any(h.get_label() and not h.get_label().startswith("_")
                for h in ax.get_lines()):
             ax.legend(fontsize="small")

@@ -12,6 +12,9 @@ penalty factor negative), run with `snakemake -j2` as a user would:
     both densities, and halving the density scales the peak by 2^(-3/5) (Hertz: F_max ~
     m*^(3/5)) to 1 % and the duration by 2^(-2/5) to 1 %: the body override reached the
     SID and the scene override the run. The PNG of the swept parameters exists.
+  * A run stopped by SIGTERM in the middle of the impact (a scheduler's time limit) is
+    continued by the next invocation with ffrsim --restart and ends as the uninterrupted
+    run to 1e-3.
   * A second invocation does nothing; changing one value (3e17 -> 2e17) runs exactly the
     simulations with it (2, one per density) and the collection, builds no SID, and leaves
     the other rows as they were.
@@ -25,12 +28,13 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 
 import h5py
 
-from result_checks import Checks
+from result_checks import Checks, signal_at_fraction
 
 source, bin_dir, out = sys.argv[1:4]
 shutil.rmtree(out, ignore_errors=True)
@@ -136,6 +140,41 @@ check(len(timings) == 6 and all(float(t["wall_time_s"]) > 0 for t in timings
 r = snakemake(study_file)
 check(r.returncode == 0 and "Nothing to be done" in r.stdout + r.stderr,
       "a second invocation does nothing")
+
+# A run stopped by a scheduler (SIGTERM in the middle of the impact, as at a Slurm time
+# limit) is continued from its result file when the workflow runs again. As after such an
+# invocation: the run has no summary and the study no table (the collection never ran).
+sys.path.insert(0, os.path.join(source, "benchmarks", "studies"))
+from study_file import Study  # noqa: E402
+import study_jobs  # noqa: E402
+study = Study(study_file)
+run = next(r for r in study.runs(study_jobs.program_versions(bin_dir))
+           if r.values == {"penalty_factor": 1.0e17, "density": 7850})
+run_dir = os.path.join(studies, "penalty_density", "runs", run.id)
+before = json.load(open(os.path.join(run_dir, "summary.json")))
+os.remove(os.path.join(run_dir, "summary.json"))
+os.remove(table_path)
+result = os.path.join(run_dir, "result.h5")
+cmd = [os.path.join(bin_dir, "ffrsim"), "-v", run.scene, "-o", result]
+for s in run.ffrsim_sets(os.path.join(studies, "sids")):
+    cmd += ["--set", s]
+code, _ = signal_at_fraction(cmd, 1.0e-4, 0.4, signal.SIGTERM)
+with h5py.File(result, "r") as f:
+    status = f.attrs["status"]
+check(code == 1 and status.startswith("interrupted by SIGTERM"),
+      f"the run stopped by SIGTERM: exit {code}, {status}")
+r = snakemake(study_file)
+counts = job_counts(r.stdout + r.stderr)
+after = json.load(open(os.path.join(run_dir, "summary.json")))
+check(r.returncode == 0 and counts.get("simulate") == 1 and after.get("restarted") is True
+      and after["status"] == "completed", f"the next invocation continued it with "
+      f"ffrsim --restart: {counts}, restarted {after.get('restarted')}, {after['status']}")
+# CVODE starts afresh at the last row on disk (order 1, new steps): the continued run
+# follows the uninterrupted one to the local error control (rtol 1e-6 over ~1000 steps).
+for k in ("max_contact_force_N", "contact_duration_s"):
+    x, y = after["figures"][k], before["figures"][k]
+    check(abs(x / y - 1) < 1e-3, f"continued run: {k} {x:.9g} against {y:.9g} uninterrupted")
+rows = read_table(table_path)  # with the continued run's row
 
 # One value changed: one new run and the collection, no SID.
 changed = os.path.join(out, "study_changed.yaml")
