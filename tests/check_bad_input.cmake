@@ -1,15 +1,18 @@
 # Runs PROGRAM on every file of CASES_DIR and checks the exit code (2) and that the one-line
 # error names the file, the line and, where there is one, the key. Used for igaprep (body
-# files, tests/bad_input/) and ffrsim (scenes, tests/bad_scenes/).
+# files, tests/bad_input/), ffrsim (scenes, tests/bad_scenes/) and the study workflow (study
+# files, tests/bad_studies/).
 # Each case file starts with a comment line "# expect: TEXT" giving a text the message must
 # contain. Optional lines "# output: yes" (run with -o OUT: the error comes from the
 # pipeline, and no output or temporary file may be left behind) and "# exit: N" (expected
 # exit code, default 2); "# also: TEXT" (a second text the message must contain).
-# Variables: PROGRAM, CASES_DIR, OUT_DIR; ALWAYS_ARGS (appended to every run, '|'-separated);
+# Variables: PROGRAM, CASES_DIR, OUT_DIR; PROGRAM_ARGS (put before every run's arguments,
+# '|'-separated: a script and its command); ALWAYS_ARGS (appended to every run, '|'-separated);
 # USAGE_ARGS / USAGE_EXPECT (a usage error to check, arguments '|'-separated).
 # Also checks a missing input file.
 file(GLOB cases "${CASES_DIR}/*.yaml")
 string(REPLACE "|" ";" always "${ALWAYS_ARGS}")
+string(REPLACE "|" ";" program_args "${PROGRAM_ARGS}")
 function(expect_error args expected what)
   if(NOT DEFINED expected_rc)
     set(expected_rc 2)
@@ -17,7 +20,7 @@ function(expect_error args expected what)
   if(NOT DEFINED also)
     set(also "")
   endif()
-  execute_process(COMMAND ${PROGRAM} ${args} ${always}
+  execute_process(COMMAND ${PROGRAM} ${program_args} ${args} ${always}
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   string(STRIP "${err}" err)
   string(FIND "${err}" "${expected}" pos)

@@ -48,7 +48,7 @@ def _key_text(path):
     text = ""
     for p in path:
         text += f"[{p}]" if isinstance(p, int) else (f".{p}" if text else str(p))
-    return text or "(document)"
+    return text or "(top level)"
 
 
 class _Document:
@@ -60,7 +60,7 @@ class _Document:
             with open(path, encoding="utf-8") as f:
                 text = f.read()
         except OSError as e:
-            raise StudyError(f"{path}: cannot read the study file: {e.strerror}")
+            raise StudyError(f"{path}: cannot open file ({e.strerror})")
         self.text = text
         self.lines = {}
         try:
@@ -115,7 +115,7 @@ def _schema_message(error):
             return path + [extra[0]], f"unknown key (expected one of: {known})"
     if v == "required":
         missing = re.findall(r"'([^']+)' is a required property", error.message)
-        return path, f"missing key '{missing[0] if missing else error.validator_value}'"
+        return path, f"missing required key '{missing[0] if missing else error.validator_value}'"
     if v == "oneOf" and len(path) >= 2 and path[-2] == "parameters":
         return path, "expected exactly one of 'values' and 'range'"
     if v == "type":
