@@ -105,19 +105,20 @@ def build_sid(bin_dir, sid, sid_dir, threads, version):
     return record
 
 
+def _scalar(v):
+    """An HDF5 attribute as a Python value: numpy scalars as int or float, bytes as str."""
+    if hasattr(v, "item") and getattr(v, "size", 1) == 1:
+        v = v.item()
+    return v.decode() if isinstance(v, bytes) else v
+
+
 def _sid_attributes(path):
     """The SID's scalar root attributes (ndof, nq, n_interface_control_points, ...), for the
     table's sid:NAME columns; not the copied body file."""
-    out = {}
     with h5py.File(path, "r") as f:
-        for k, v in f.attrs.items():
-            if hasattr(v, "item") and getattr(v, "size", 1) == 1:
-                v = v.item()
-            if isinstance(v, bytes):
-                v = v.decode()
-            if isinstance(v, (int, float)) or (isinstance(v, str) and "\n" not in v):
-                out[k] = v
-    return out
+        values = {k: _scalar(v) for k, v in f.attrs.items()}
+    return {k: v for k, v in values.items()
+            if isinstance(v, (int, float)) or (isinstance(v, str) and "\n" not in v)}
 
 
 def _status(result):
@@ -134,10 +135,7 @@ def _figure(f, name):
         else ("/", name)
     if group not in f or attr not in f[group].attrs:
         return None
-    v = f[group].attrs[attr]
-    if hasattr(v, "item"):
-        v = v.item()
-    return v.decode() if isinstance(v, bytes) else v
+    return _scalar(f[group].attrs[attr])
 
 
 def _ffrsim_command(bin_dir, run, sid_dir, result, threads):
