@@ -1,4 +1,5 @@
-"""The two jobs of a study: build one cached SID (igaprep), run one scene (ffrsim).
+"""The two jobs of a study: build one cached SID (igaprep), run one scene (ffrsim); their
+records are specified in schemas/study_outputs.md.
 
 Each job leaves a small JSON record beside its output, the thing the workflow tracks:
 

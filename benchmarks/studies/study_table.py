@@ -1,5 +1,5 @@
 """The table of a study: every run's parameters, status and collected figures, and a PNG of
-the plotted figures against each swept parameter.
+the plotted figures against each swept parameter (schemas/study_outputs.md).
 
 * `<study>.csv`: one row per run in the order of the study's combinations; columns `run`
   (its id), the parameters, `status` (`completed`, or `failed: PROGRAM exit N: MESSAGE`)
