@@ -73,7 +73,11 @@ def cmd_collect(a, study, runs):
     _, study_dir = paths(a.out, study)
     summaries = []
     for r in runs:
-        with open(os.path.join(study_dir, "runs", r.id, "summary.json"), encoding="utf-8") as f:
+        path = os.path.join(study_dir, "runs", r.id, "summary.json")
+        if not os.path.exists(path):
+            raise RuntimeError(f"run {r.id} has no summary ({path}): run the workflow "
+                               f"(benchmarks/studies/Snakefile), not collect alone")
+        with open(path, encoding="utf-8") as f:
             summaries.append(json.load(f))
     table = study_table.write_tables(study, summaries, study_dir)
     for p in study_table.swept(study):

@@ -61,8 +61,8 @@ class _Document:
                 text = f.read()
         except OSError as e:
             raise StudyError(f"{path}: cannot open file ({e.strerror})")
-        self.text = text
         self.lines = {}
+        self._scalars = _Loader("")  # constructs the scalars of the composed nodes
         try:
             node = yaml.compose(text, Loader=_Loader)
         except yaml.YAMLError as e:
@@ -87,8 +87,7 @@ class _Document:
             return out
         if isinstance(node, yaml.SequenceNode):
             return [self._build(v, path + (i,)) for i, v in enumerate(node.value)]
-        loader = _Loader("")
-        value = loader.construct_object(node, deep=True)
+        value = self._scalars.construct_object(node, deep=True)
         if isinstance(value, float) and not math.isfinite(value):
             raise StudyError(f"{self.path}:{self.lines[path]}: key '{_key_text(path)}': "
                              f"expected a finite number, found {node.value}")
@@ -297,29 +296,22 @@ def _sha(*parts):
 class Sid:
     """One SID a run needs: its body file, the overrides and the cache name from their hash."""
 
-    def __init__(self, study, name, body_file, overrides, version, values):
+    def __init__(self, study, key, name, body_file, overrides, version):
+        """key: the study's 'bodies' key (for messages); name: the SID name it gives here."""
         self.name = name
         self.body_file = os.path.normpath(os.path.join(study.folder, body_file))
         try:
             with open(self.body_file, "rb") as f:
                 body = f.read()
         except OSError as e:
-            raise study.error(("bodies", _unformat(study, name, values)),
+            raise study.error(("bodies", key),
                               f"cannot read body file '{self.body_file}': {e.strerror}")
         self.overrides = overrides
         # The body file's own bytes, not its path: the same body from two checkouts (a
         # workstation and a cluster) has the same hash.
         self.hash = _sha("sid", version, body, *overrides)[:16]
-        stem = os.path.basename(self.body_file)
-        stem = stem[:-5] if stem.endswith(".yaml") else os.path.splitext(stem)[0]
+        stem = os.path.splitext(os.path.basename(self.body_file))[0]
         self.stem = f"{stem}-{self.hash}"
-
-
-def _unformat(study, formatted, values):
-    for k in study.bodies:
-        if k.format(**values) == formatted:
-            return k
-    return formatted
 
 
 class Run:
@@ -338,8 +330,8 @@ class Run:
             sid_name = name.format(**values)
             overrides = [f"{p.body_key}={value_text(values[p.name])}" for p in study.parameters
                          if p.body_key is not None and p.body in (None, name)]
-            self.sids[sid_name] = Sid(study, sid_name, body.format(**values), overrides,
-                                      versions["igaprep"], values)
+            self.sids[sid_name] = Sid(study, name, sid_name, body.format(**values), overrides,
+                                      versions["igaprep"])
         self.scene_overrides = [f"{p.scene_key}={value_text(values[p.name])}"
                                 for p in study.parameters if p.scene_key is not None]
         self.sid_bodies = self._scene_sid_bodies(study, scene_bytes)

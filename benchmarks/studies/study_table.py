@@ -110,22 +110,21 @@ def plot(study, table, parameter, path):
     numeric = _numeric(xs_all)
     log = (numeric is not None and min(numeric) > 0
            and max(numeric) / min(numeric) > 50)
+
+    def position(x):  # a value's place on the axis: itself, or its index if not a number
+        return float(x) if numeric is not None else xs_all.index(x)
+
+    any_failed = any(r["status"] != "completed" for r in table)
     for ax, figure in zip(axes[:, 0], study.plot):
         for key, rs in groups.items():
-            pts = [(r[parameter.name], r[figure]) for r in rs
-                   if r["status"] == "completed" and isinstance(r[figure], (int, float))
-                   and math.isfinite(r[figure])]
-            if numeric is not None:
-                pts = sorted((float(x), y) for x, y in pts)
-            else:
-                pts = [(xs_all.index(x), y) for x, y in pts]
-            label = ", ".join(f"{o} = {k}" for o, k in zip(others, key)) or None
-            ax.plot([x for x, _ in pts], [y for _, y in pts], "o-", label=label)
-            failed = [r for r in rs if r["status"] != "completed"]
-            for r in failed:
-                x = float(r[parameter.name]) if numeric is not None \
-                    else xs_all.index(r[parameter.name])
-                ax.axvline(x, color="red", lw=0.8, ls=":")
+            pts = sorted((position(r[parameter.name]), r[figure]) for r in rs
+                         if r["status"] == "completed" and isinstance(r[figure], (int, float))
+                         and math.isfinite(r[figure]))
+            ax.plot([x for x, _ in pts], [y for _, y in pts], "o-",
+                    label=", ".join(f"{o} = {k}" for o, k in zip(others, key)) or None)
+            for r in rs:
+                if r["status"] != "completed":
+                    ax.axvline(position(r[parameter.name]), color="red", lw=0.8, ls=":")
         if log:
             ax.set_xscale("log")
         if numeric is None:
@@ -135,15 +134,12 @@ def plot(study, table, parameter, path):
             ax.axhline(0.0, color="k", lw=0.8)
         ax.set_ylabel(f"{figure} (relative: 0.01 = 1 %)" if figure.endswith("_vs_hertz")
                       else figure)
-        if any(h.get_label() and not h.get_label().startswith("_")
-               for h in ax.get_lines()):
+        if others:  # one line per combination of the other parameters
             ax.legend(fontsize="small")
     unit = f" [{parameter.unit}]" if parameter.unit else ""
     axes[-1, 0].set_xlabel(f"{parameter.description}{unit}")
-    axes[0, 0].set_title(f"{study.name}: against {parameter.name} "
-                         f"(red dotted: failed runs)" if any(
-                             r["status"] != "completed" for r in table)
-                         else f"{study.name}: against {parameter.name}")
+    axes[0, 0].set_title(f"{study.name}: against {parameter.name}"
+                         + (" (red dotted: failed runs)" if any_failed else ""))
     fig.tight_layout()
     tmp = f"{path}.tmp{os.getpid()}.png"
     fig.savefig(tmp, dpi=110)
