@@ -1,5 +1,10 @@
 #include "runtime/bodies/floating_body.h"
 
+#include <cstring>
+#include <functional>
+#include <map>
+#include <mutex>
+
 #include "common/error.h"
 #include "runtime/bodies/rotation.h"
 
@@ -26,6 +31,53 @@ FloatingBody3d::FloatingBody3d(std::string name, std::shared_ptr<const FlexibleB
                              << s.Cr1[j].rows() << "x" << s.Cr1[j].cols() << ", expected 3x" << nq);
     }
   }
+  coupling_ = sharedCoupling(s, name_);
+}
+
+std::shared_ptr<const RotationalCoupling> FloatingBody3d::sharedCoupling(
+    const FlexibleBodySid& sid, const std::string& body) {
+  // One tensor per SID object while a body holds it (the body also holds the SID, so its
+  // address is not reused meanwhile).
+  static std::mutex mutex;
+  static std::map<const FlexibleBodySid*, std::weak_ptr<const RotationalCoupling>> registry;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (auto found = registry[&sid].lock()) return found;
+  auto made = std::make_shared<const RotationalCoupling>(sid, body);
+  registry[&sid] = made;
+  return made;
+}
+
+namespace {
+const Eigen::Matrix<double, Eigen::Dynamic, 3>& cachedProduct(
+    const Eigen::VectorXd& x, Eigen::VectorXd& key, Eigen::Matrix<double, Eigen::Dynamic, 3>& G,
+    bool& valid, const std::function<void()>& compute) {
+  if (valid && key.size() == x.size() &&
+      std::memcmp(key.data(), x.data(), sizeof(double) * x.size()) == 0)
+    return G;
+  compute();
+  key = x;
+  valid = true;
+  return G;
+}
+}  // namespace
+
+const Eigen::Matrix<double, Eigen::Dynamic, 3>& FloatingBody3d::couplingOfPositions(
+    const Eigen::VectorXd& q) const {
+  return cachedProduct(q, positions_.x, positions_.G, positions_.valid,
+                       [&] { coupling_->apply(q, positions_.G); });
+}
+
+const Eigen::Matrix<double, Eigen::Dynamic, 3>& FloatingBody3d::couplingOfRates(
+    const Eigen::VectorXd& qd) const {
+  return cachedProduct(qd, rates_.x, rates_.G, rates_.valid, [&] {
+    // Quasi-static coordinates keep qdot = 0: a column pass per non-zero entry is cheaper
+    // than the full pass while at most a quarter of the entries are non-zero.
+    const Eigen::Index nonzero = (qd.array() != 0.0).count();
+    if (4 * nonzero <= qd.size())
+      coupling_->applySparse(qd, rates_.G);
+    else
+      coupling_->apply(qd, rates_.G);
+  });
 }
 
 void FloatingBody3d::checkCentrifugalInvariants() const {
@@ -58,12 +110,9 @@ FloatingBody3d::Invariants FloatingBody3d::invariants(const Eigen::VectorXd& q) 
   Invariants inv;
   inv.mc = s.first_moment + s.Ct.transpose() * q;
   inv.J = s.inertia;
-  inv.CrT = s.Cr0.transpose();
-  for (int j = 0; j < nq(); ++j) {
-    if (q(j) == 0.0) continue;
-    inv.J += q(j) * s.J1[j];
-    inv.CrT += q(j) * s.Cr1[j];
-  }
+  for (int j = 0; j < nq(); ++j)
+    if (q(j) != 0.0) inv.J += q(j) * s.J1[j];
+  inv.CrT = (s.Cr0 - couplingOfPositions(q)).transpose();
   return inv;
 }
 
@@ -112,22 +161,19 @@ void FloatingBody3d::accelerations(const double* sp, const double* sv, const dou
   // Rate-dependent sums.
   const Eigen::Vector3d ctqd = s.Ct.transpose() * qd;
   Eigen::Matrix3d Jdot = Eigen::Matrix3d::Zero();
-  Eigen::MatrixXd CrdotT = Eigen::MatrixXd::Zero(3, n);
-  for (int j = 0; j < n; ++j) {
-    if (qd(j) == 0.0) continue;
-    Jdot += qd(j) * s.J1[j];
-    CrdotT += qd(j) * s.Cr1[j];
-  }
+  for (int j = 0; j < n; ++j)
+    if (qd(j) != 0.0) Jdot += qd(j) * s.J1[j];
   const Eigen::Vector3d P = m * v + w.cross(inv.mc) + ctqd;
   const Eigen::Vector3d l = inv.mc.cross(v) + inv.J * w + inv.CrT * qd;
 
   Eigen::VectorXd h = Eigen::Map<const Eigen::VectorXd>(h_applied, 6 + n);
-  // Quadratic velocity vector (header comment).
+  // Quadratic velocity vector (header comment; (sum_j qdot_j Cr1_j) qdot = 0).
   h.head<3>() -= w.cross(ctqd) + w.cross(P);
-  h.segment<3>(3) -= ctqd.cross(v) + Jdot * w + CrdotT * qd + w.cross(l) + v.cross(P);
+  h.segment<3>(3) -= ctqd.cross(v) + Jdot * w + w.cross(l) + v.cross(P);
   if (n > 0) {
-    Eigen::VectorXd hq = CrdotT.transpose() * w + s.Ct * w.cross(v);
-    for (int i = 0; i < n; ++i) hq(i) -= 0.5 * w.dot(s.J1[i] * w) + w.dot(s.Cr1[i] * qd);
+    // (sum_j qdot_j Cr1_j)^T w - [w . Cr1_i qdot]_i = -2 Y w.
+    Eigen::VectorXd hq = -2.0 * (couplingOfRates(qd) * w) + s.Ct * w.cross(v);
+    for (int i = 0; i < n; ++i) hq(i) -= 0.5 * w.dot(s.J1[i] * w);
     if (exactly_diagonal_) {
       h.tail(n) -= hq + k_.cwiseProduct(q) + c_.cwiseProduct(qd);  // O(nq): Eq. 13
     } else {

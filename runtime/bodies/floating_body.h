@@ -21,9 +21,15 @@
 // h_b = [m g_b, m c x g_b, Ct g_b] with g_b = A^T g.
 // The mass matrix is solved by the Schur complement on the 6 rigid rows,
 // S = M_rr - C^T Me^-1 C with C = [Ct, Cr], which costs O(nq) for Me = E.
+// The Cr1 sums are evaluated through the antisymmetry of Cr1 (rotational_coupling.h):
+// with Z = [G_c q] and Y = [G_c qdot], Cr(q) = Cr0 - Z, (sum_j qdot_j Cr1_j)^T = -Y, the
+// term (sum_j qdot_j Cr1_j) qdot vanishes and the Coriolis load on q is -2 Y w.
 #pragma once
 
+#include <vector>
+
 #include "runtime/bodies/body_model.h"
+#include "runtime/bodies/rotational_coupling.h"
 
 namespace ffriga {
 
@@ -58,10 +64,28 @@ class FloatingBody3d : public BodyModel {
     Eigen::MatrixXd CrT;  // Cr(q)^T, 3 x nq
   };
   Invariants invariants(const Eigen::VectorXd& q) const;
+  // G_c q and G_c qdot (rotational_coupling.h), from the cache when q (qdot) is bit for bit
+  // the last one asked for.
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>& couplingOfPositions(const Eigen::VectorXd& q) const;
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>& couplingOfRates(const Eigen::VectorXd& qd) const;
   // Throws InputError if the SID's Oe (when present) contradicts J1 (sid.h).
   void checkCentrifugalInvariants() const;
   // Full mass matrix M(q) (6 + nq square), for tests and energies.
   Eigen::MatrixXd massMatrix(const Eigen::VectorXd& q) const;
+
+ private:
+  static std::shared_ptr<const RotationalCoupling> sharedCoupling(const FlexibleBodySid& sid,
+                                                                  const std::string& body);
+  // Shared by the bodies of one SID.
+  std::shared_ptr<const RotationalCoupling> coupling_;
+  // Last arguments and results of couplingOf*: accelerations() is called with the same q
+  // for every rigid column of the Jacobian. Not for concurrent calls on one body.
+  struct CouplingCache {
+    Eigen::VectorXd x;
+    Eigen::Matrix<double, Eigen::Dynamic, 3> G;
+    bool valid = false;
+  };
+  mutable CouplingCache positions_, rates_;
 };
 
 }  // namespace ffriga

@@ -130,6 +130,7 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
     files.push_back(bodies[b]["sid"] ? resolveSid(doc, bodies[b]["sid"], key, sid_paths) : "");
   }
   std::vector<std::shared_ptr<FlexibleBodySid>> sids;
+  std::map<std::string, std::shared_ptr<FlexibleBodySid>> loaded;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const YAML::Node B = bodies[b];
     const std::string k = Str() << "bodies[" << b << "]";
@@ -150,13 +151,21 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
     }
     const std::string key = k + ".sid";
     try {
+      // Bodies of one SID file share its data (read once; the runtime never changes it).
+      const bool frozen = B["frozen"] && B["frozen"].as<bool>();
+      const std::string shareKey = (frozen ? "frozen:" : "elastic:") + files[b];
+      if (auto it = loaded.find(shareKey); it != loaded.end()) {
+        sids.push_back(it->second);
+        continue;
+      }
       auto sid = std::make_shared<FlexibleBodySid>(load_sid(files[b]));
-      if (B["frozen"] && B["frozen"].as<bool>()) {
+      if (frozen) {
         if (sid->model == "axisymmetric")
           throw InputError("an axisymmetric body cannot be frozen (it would lose its axis)");
         sid = std::make_shared<FlexibleBodySid>(frozenSid(*sid));
       }
       sids.push_back(sid);
+      loaded[shareKey] = sid;
     } catch (const InputError& e) {
       throw inputError(doc, B["sid"], key, e.what());
     }
