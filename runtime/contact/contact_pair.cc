@@ -56,13 +56,14 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
                            << " collocation points, " << cs.collocation_weights.size()
                            << " weights, " << cs.collocation_element.size() << " elements");
   }
-  side.PhiS.resize(side.cps.size() * d, nq);
+  side.PhiSt.resize(nq, side.cps.size() * d);
   for (std::size_t i = 0; i < side.cps.size(); ++i)
-    side.PhiS.middleRows(i * d, d) = sid.Phi.middleRows(side.cps[i] * d, d);
+    side.PhiSt.middleCols(i * d, d) = sid.Phi.middleRows(side.cps[i] * d, d).transpose();
   side.xc0.resize(nc, d);
-  side.PhiC.assign(nc, Eigen::MatrixXd::Zero(d, nq));
+  side.PhiCt = Eigen::MatrixXd::Zero(nq, nc * d);
   side.weight.resize(nc);
   side.cache.assign(nc, SurfaceProjection());
+  side.clearance.assign(nc, Side::Clearance());
   Eigen::MatrixXd R;
   for (int i = 0; i < nc; ++i) {
     const int e = cs.collocation_element[i];
@@ -73,7 +74,7 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
     for (int k = 0; k < side.surface.numFunctions(e); ++k) {
       const int f = side.surface.functions(e)[k];
       side.xc0.row(i) += R(0, k) * side.P0.row(f);
-      side.PhiC[i] += R(0, k) * sid.Phi.middleRows(f * d, d);
+      side.PhiCt.middleCols(i * d, d) += R(0, k) * sid.Phi.middleRows(f * d, d).transpose();
     }
     const double ring = d == 2 ? 2.0 * M_PI * side.xc0(i, 0) : 1.0;
     side.weight(i) = cs.collocation_weights(i) * ring;
@@ -103,7 +104,8 @@ ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& b
   World w;
   const int d = dim_;
   w.points.resize(side.P0.rows(), d);
-  const Eigen::VectorXd u = side.PhiS * pose.q;
+  w.u = side.PhiSt.transpose() * pose.q;
+  const Eigen::VectorXd& u = w.u;
   w.lo = Eigen::VectorXd::Constant(d, std::numeric_limits<double>::infinity());
   w.hi = -w.lo;
   for (std::size_t i = 0; i < side.cps.size(); ++i) {
@@ -136,6 +138,23 @@ double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_ed
   return std::max(0.0, std::min(edge, centre));
 }
 
+double ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u, double renew) {
+  if (target.reference_u.size() != u.size()) {
+    // First evaluation: every clearance record is newer than this reference.
+    target.reference_u = u;
+    return 0.0;
+  }
+  double move = 0.0;
+  for (Eigen::Index k = 0; k < u.size(); k += dim_)
+    move = std::max(move, (u.segment(k, dim_) - target.reference_u.segment(k, dim_)).norm());
+  if (move > renew) {
+    target.reference_moves += move;
+    target.reference_u = u;
+    move = 0.0;
+  }
+  return move;
+}
+
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                            const BodyPose& pb, double* hA, double* hB, ContactState* state) {
   terms_.clear();
@@ -144,11 +163,17 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   for (int c = 0; c < dim_; ++c) {
     if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) return;
   }
+  // Target motion bounds d_T + D of each side (header comment). The reference is renewed
+  // once it is a penetration tolerance away: the bound then follows the path of the motion
+  // in steps of that size.
+  const double renew = penetrationTolerance();
+  double bound[2];
+  for (int k = 0; k < 2; ++k)
+    bound[k] = targetMotion(side_[k], k == 0 ? wa.u : wb.u, renew) + side_[k].reference_moves;
   const double factor = options_.both_roles ? 0.5 : 1.0;
   ContactState s0, s1;
-  terms_.clear();
-  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, &s0);
-  if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, &s1);
+  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, bound[1], &s0);
+  if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, bound[0], &s1);
   if (state) {
     // s1 holds forces on B: the force on A is minus that.
     state->force = s0.force - s1.force;
@@ -165,7 +190,7 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
 
 void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc,
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
-                            double* hT, double factor, ContactState* state) {
+                            double* hT, double factor, double targetBound, ContactState* state) {
   (void)wc;
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
@@ -181,15 +206,39 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   };
   std::vector<PointResult> res(nc);
   const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
-#pragma omp parallel for schedule(dynamic, 8) if (nc >= kParallelPoints)
+  // Phase 1 (serial): the points, and which of them need a search.
+  const Eigen::VectorXd ub = C.nq() > 0 ? Eigen::VectorXd(sc.PhiCt.transpose() * pc.q)
+                                        : Eigen::VectorXd::Zero(nc * d);
+  std::vector<int> search;
+  std::vector<Eigen::VectorXd> xs(nc), ys(nc);
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
-    r.xb = sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q;
-    const Eigen::VectorXd x = pc.origin + pc.A * r.xb;
+    r.xb = sc.xc0.row(i).transpose() + ub.segment(i * d, d);
+    xs[i] = pc.origin + pc.A * r.xb;
+    const Eigen::VectorXd& x = xs[i];
     bool near = true;
     for (int a = 0; a < d; ++a)
       near = near && x(a) >= wt.lo(a) - margin_ && x(a) <= wt.hi(a) + margin_;
     if (!near) continue;
+    ys[i] = pt.A.transpose() * (x - pt.origin);
+    const Side::Clearance& cl = sc.clearance[i];
+    if (cl.valid && cl.gap - (ys[i] - cl.y.head(d)).norm() - (targetBound + cl.slack) > 0.0) {
+      ++avoided_;
+      continue;
+    }
+    search.push_back(i);
+  }
+  searches_ += static_cast<long long>(search.size());
+  // Phase 2: closest points of the candidates.
+  const int ns = static_cast<int>(search.size());
+  const double slack = targetBound - 2.0 * st.reference_moves;  // d_T,e - D_e
+#pragma omp parallel for schedule(dynamic, 8) if (ns >= kParallelPoints)
+  for (int k = 0; k < ns; ++k) {
+    const int i = search[k];
+    PointResult& r = res[i];
+    Side::Clearance& cl = sc.clearance[i];
+    cl.valid = false;
+    const Eigen::VectorXd& x = xs[i];
     SurfaceProjection p = closestPoint(st.surface, wt.points, x, &sc.cache[i]);
     r.failed = !p.converged;
     if (!p.converged) continue;
@@ -202,7 +251,13 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
     const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
     r.gap = n.dot(x - p.point.x);
-    if (r.gap >= 0.0) continue;
+    if (r.gap >= 0.0) {
+      cl.valid = true;
+      cl.gap = r.gap;
+      cl.y.head(d) = ys[i];
+      cl.slack = slack;
+      continue;
+    }
     r.active = true;
     r.n = n;
     r.f = (-options_.penalty * r.gap * sc.weight(i) * factor) * n;
@@ -225,24 +280,24 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     // Contact body: rigid and elastic parts at the collocation point.
     C.addRigidPointForce(pc, r.xb, r.f, hC);
     const Eigen::VectorXd fbC = pc.A.transpose() * r.f;
-    fbSum += sc.PhiC[i].transpose() * fbC;
+    fbSum += sc.PhiCt.middleCols(i * d, d) * fbC;
     // Target body: -f at x_T, elastic part through the basis at s.
     const Eigen::VectorXd minus = -r.f;
     T.addRigidPointForce(pt, r.xt, minus, hT);
     const Eigen::VectorXd fbT = pt.A.transpose() * minus;
     st.surface.basis(r.element, r.s.data(), 0, R);
-    Eigen::MatrixXd PhiT = Eigen::MatrixXd::Zero(d, T.nq());
+    Eigen::MatrixXd PhiTt = Eigen::MatrixXd::Zero(T.nq(), d);  // Phi at x_T, transposed
     for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
       const int f = st.surface.functions(r.element)[k];
       FT.row(local[f]) += R(0, k) * fbT.transpose();
-      if (T.nq() > 0) PhiT += R(0, k) * st.PhiS.middleRows(local[f] * d, d);
+      if (T.nq() > 0) PhiTt += R(0, k) * st.PhiSt.middleCols(local[f] * d, d);
     }
     ContactStiffnessTerm term;
     term.body_c = index_[c];
     term.body_t = index_[1 - c];
     term.k = options_.penalty * sc.weight(i) * factor;
-    C.pointGradients(pc, r.xb, sc.PhiC[i], r.n, term.bvC, term.bpC);
-    T.pointGradients(pt, r.xt, PhiT, r.n, term.bvT, term.bpT);
+    C.pointGradients(pc, r.xb, sc.PhiCt.middleCols(i * d, d).transpose(), r.n, term.bvC, term.bpC);
+    T.pointGradients(pt, r.xt, PhiTt.transpose(), r.n, term.bvT, term.bpT);
     terms_.push_back(std::move(term));
     if (state) {
       state->force.head(d) += r.f;
@@ -255,7 +310,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   if (T.nq() > 0) {
     Eigen::VectorXd flat(st.cps.size() * d);
     for (std::size_t k = 0; k < st.cps.size(); ++k) flat.segment(k * d, d) = FT.row(k).transpose();
-    Eigen::Map<Eigen::VectorXd>(hT + nrT, T.nq()) += st.PhiS.transpose() * flat;
+    Eigen::Map<Eigen::VectorXd>(hT + nrT, T.nq()) += st.PhiSt * flat;
   }
 }
 
@@ -274,7 +329,7 @@ Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& 
     std::vector<double> depth(nc, 0.0);
 #pragma omp parallel for schedule(dynamic, 8) if (nc >= kParallelPoints)
     for (int i = 0; i < nc; ++i) {
-      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q);
+      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiCt.middleCols(i * dim_, dim_).transpose() * pc.q);
       const SurfaceProjection p = closestPoint(st.surface, w[1 - c].points, x, nullptr);
       if (!p.converged) continue;
       const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
@@ -285,7 +340,7 @@ Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& 
       if (depth[i] <= deepest.depth) continue;
       deepest.depth = depth[i];
       deepest.contact_body = index_[c];
-      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiC[i] * pc.q);
+      const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiCt.middleCols(i * dim_, dim_).transpose() * pc.q);
       deepest.point.setZero();
       deepest.point.head(dim_) = x;
     }

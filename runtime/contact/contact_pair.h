@@ -15,8 +15,20 @@
 // Pre-check: if the world bounding boxes of the two surfaces' control points (which hold
 // the surfaces, NURBS convex hull property), inflated by `search_margin`, do not overlap,
 // nothing is evaluated; single points outside the target's inflated box are skipped.
-// The collocation loop runs in parallel (OpenMP); the sums are formed serially afterwards
-// in a fixed order, so results do not depend on the number of threads.
+// Clearance bound (candidate points kept between evaluations): a point whose last search
+// found it in front of the target, g_e > 0, with a proper foot point, keeps g > 0 while
+//   g_e - |y - y_e| - (d_T + d_T,e) > 0,
+// y the point in the target's body frame (distances are frame-invariant), y_e its value at
+// that search, and d_T + d_T,e a bound on how far the target surface has moved in its
+// frame since: its control points' largest displacement change against a reference
+// (convex hull property: the surface moves no more than its control points), d_T now and
+// d_T,e at the search, plus the reference's own moves when it is renewed. The signed gap is
+// 1-Lipschitz in the point and in the surface, so such a point is not searched: it cannot
+// carry force (only by passing round the surface's edge, which the searched points report
+// as beyond-edge). The forces are those of searching every point.
+// The searches run in parallel (OpenMP) when there are at least kParallelPoints of them;
+// the sums are formed serially afterwards in a fixed order, so results do not depend on
+// the number of threads.
 #pragma once
 
 #include <string>
@@ -111,13 +123,31 @@ class ContactPair {
     ExtractedSurface surface;
     std::vector<int> cps;               // body control points of the surface
     Eigen::MatrixXd P0;                 // ncp x d, all body control points (undeformed)
-    Eigen::MatrixXd PhiS;               // (cps.size() * d) x nq, rows of Phi of the surface points
+    Eigen::MatrixXd PhiSt;              // nq x (cps.size() * d): Phi of the surface points,
+                                        // transposed (a point's d columns are contiguous)
     Eigen::MatrixXd xc0;                // nc x d, collocation points, undeformed body frame
-    std::vector<Eigen::MatrixXd> PhiC;  // nc matrices d x nq
+    Eigen::MatrixXd PhiCt;              // nq x (nc * d): Phi at collocation point i in columns
+                                        // i d .. i d + d - 1 (transposed, contiguous)
     Eigen::VectorXd weight;             // nc, collocation weight incl. the ring factor (m^2)
     std::vector<SurfaceProjection> cache;  // warm starts, one per collocation point
+    // Clearance bound (header comment), one per collocation point as a contact point.
+    struct Clearance {
+      bool valid = false;
+      double gap = 0.0;                               // g_e, m
+      Eigen::Vector3d y = Eigen::Vector3d::Zero();    // target frame, m (2D: 2 entries)
+      double slack = 0.0;                             // d_T,e - D_e, m
+    };
+    std::vector<Clearance> clearance;
+    // This side as a target: reference displacements of its surface control points (body
+    // frame, cps.size() * d), and D, the sum of the reference's moves (m).
+    Eigen::VectorXd reference_u;
+    double reference_moves = 0.0;
   };
+  // The target-side motion bound d_T (m) at displacements u (PhiSt^T q), renewing the reference
+  // when d_T exceeds `renew` (then d_T = 0 and D grows by the move).
+  double targetMotion(Side& target, const Eigen::VectorXd& u, double renew);
   struct World {
+    Eigen::VectorXd u;       // cps.size() * d, body-frame displacements of the surface points
     Eigen::MatrixXd points;  // ncp x d, deformed control points in world coordinates
     Eigen::VectorXd lo, hi;  // bounding box of the surface's points
     // The surface point at the centre of its parameter domain and its world normal.
@@ -132,7 +162,14 @@ class ContactPair {
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
-                 ContactState* state);
+                 double targetBound, ContactState* state);
+  // Counts of the closest-point searches: done, and avoided by the clearance bound.
+ public:
+  long long searches() const { return searches_; }
+  long long searchesAvoided() const { return avoided_; }
+
+ private:
+  long long searches_ = 0, avoided_ = 0;
 
   std::string name_;
   std::vector<ContactStiffnessTerm> terms_;
