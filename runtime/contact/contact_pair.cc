@@ -138,21 +138,35 @@ double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_ed
   return std::max(0.0, std::min(edge, centre));
 }
 
-double ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u, double renew) {
-  if (target.reference_u.size() != u.size()) {
-    // First evaluation: every clearance record is newer than this reference.
-    target.reference_u = u;
-    return 0.0;
+ContactPair::TargetMotion ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u,
+                                                    double renew) {
+  auto changeAgainst = [&](const Eigen::VectorXd& r) {
+    double m = 0.0;
+    for (Eigen::Index k = 0; k < u.size(); k += dim_)
+      m = std::max(m, (u.segment(k, dim_) - r.segment(k, dim_)).norm());
+    return m;
+  };
+  TargetMotion tm;
+  if (target.references.empty() || changeAgainst(target.references.back().u) > renew) {
+    const double moves = target.references.empty()
+                             ? 0.0
+                             : target.references.back().moves +
+                                   changeAgainst(target.references.back().u);
+    target.references.push_back({target.next_reference++, u, moves});
+    if (static_cast<int>(target.references.size()) > kReferences) target.references.pop_front();
   }
-  double move = 0.0;
-  for (Eigen::Index k = 0; k < u.size(); k += dim_)
-    move = std::max(move, (u.segment(k, dim_) - target.reference_u.segment(k, dim_)).norm());
-  if (move > renew) {
-    target.reference_moves += move;
-    target.reference_u = u;
-    move = 0.0;
-  }
-  return move;
+  tm.first = target.references.front().id;
+  for (const Side::Reference& r : target.references) tm.change.push_back(changeAgainst(r.u));
+  tm.moves = target.references.back().moves;
+  return tm;
+}
+
+double ContactPair::TargetMotion::since(const Side::Clearance& cl) const {
+  const long j = cl.reference - first;
+  // Kept reference s: |u - u_s| + |u_e - u_s|; older: through the newest reference and the
+  // moves between, |u - u_n| + (D_n - D_s) + |u_e - u_s|.
+  if (j >= 0) return change[j] + cl.motion;
+  return change.back() + (moves - cl.reference_moves) + cl.motion;
 }
 
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
@@ -163,17 +177,15 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   for (int c = 0; c < dim_; ++c) {
     if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) return;
   }
-  // Target motion bounds d_T + D of each side (header comment). The reference is renewed
-  // once it is a penetration tolerance away: the bound then follows the path of the motion
-  // in steps of that size.
+  // Target motion of each side (header comment). A new reference is taken once the newest
+  // is a penetration tolerance away: records then hold d_T,e below that size.
   const double renew = penetrationTolerance();
-  double bound[2];
-  for (int k = 0; k < 2; ++k)
-    bound[k] = targetMotion(side_[k], k == 0 ? wa.u : wb.u, renew) + side_[k].reference_moves;
+  const TargetMotion motion[2] = {targetMotion(side_[0], wa.u, renew),
+                                  targetMotion(side_[1], wb.u, renew)};
   const double factor = options_.both_roles ? 0.5 : 1.0;
   ContactState s0, s1;
-  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, bound[1], &s0);
-  if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, bound[0], &s1);
+  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0);
+  if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, motion[0], &s1);
   if (state) {
     // s1 holds forces on B: the force on A is minus that.
     state->force = s0.force - s1.force;
@@ -190,7 +202,8 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
 
 void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc,
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
-                            double* hT, double factor, double targetBound, ContactState* state) {
+                            double* hT, double factor, const TargetMotion& motion,
+                            ContactState* state) {
   (void)wc;
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
@@ -222,7 +235,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     if (!near) continue;
     ys[i] = pt.A.transpose() * (x - pt.origin);
     const Side::Clearance& cl = sc.clearance[i];
-    if (cl.valid && cl.gap - (ys[i] - cl.y.head(d)).norm() - (targetBound + cl.slack) > 0.0) {
+    if (cl.valid && cl.gap - (ys[i] - cl.y.head(d)).norm() - motion.since(cl) > 0.0) {
       ++avoided_;
       continue;
     }
@@ -231,7 +244,6 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   searches_ += static_cast<long long>(search.size());
   // Phase 2: closest points of the candidates.
   const int ns = static_cast<int>(search.size());
-  const double slack = targetBound - 2.0 * st.reference_moves;  // d_T,e - D_e
 #pragma omp parallel for schedule(dynamic, 8) if (ns >= kParallelPoints)
   for (int k = 0; k < ns; ++k) {
     const int i = search[k];
@@ -255,7 +267,9 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
       cl.valid = true;
       cl.gap = r.gap;
       cl.y.head(d) = ys[i];
-      cl.slack = slack;
+      cl.reference = st.references.back().id;
+      cl.reference_moves = motion.moves;
+      cl.motion = motion.change.back();
       continue;
     }
     r.active = true;

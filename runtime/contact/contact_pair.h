@@ -22,7 +22,8 @@
 // that search, and d_T + d_T,e a bound on how far the target surface has moved in its
 // frame since: its control points' largest displacement change against a reference
 // (convex hull property: the surface moves no more than its control points), d_T now and
-// d_T,e at the search, plus the reference's own moves when it is renewed. The signed gap is
+// d_T,e at the search; the last kReferences references are kept, for older ones the moves
+// between the references are added (the triangle inequality). The signed gap is
 // 1-Lipschitz in the point and in the surface, so such a point is not searched: it cannot
 // carry force (only by passing round the surface's edge, which the searched points report
 // as beyond-edge). The forces are those of searching every point.
@@ -31,6 +32,7 @@
 // the number of threads.
 #pragma once
 
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -135,17 +137,34 @@ class ContactPair {
       bool valid = false;
       double gap = 0.0;                               // g_e, m
       Eigen::Vector3d y = Eigen::Vector3d::Zero();    // target frame, m (2D: 2 entries)
-      double slack = 0.0;                             // d_T,e - D_e, m
+      long reference = 0;                             // the target's reference at the search
+      double reference_moves = 0.0;                   // its D_s, m
+      double motion = 0.0;                            // d_T,e against it, m
     };
     std::vector<Clearance> clearance;
-    // This side as a target: reference displacements of its surface control points (body
-    // frame, cps.size() * d), and D, the sum of the reference's moves (m).
-    Eigen::VectorXd reference_u;
-    double reference_moves = 0.0;
+    // This side as a target: its last kReferences reference displacements of the surface
+    // control points (body frame), each with its number and D_s, the sum of the moves of
+    // the references before it (m).
+    struct Reference {
+      long id = 0;
+      Eigen::VectorXd u;
+      double moves = 0.0;
+    };
+    std::deque<Reference> references;
+    long next_reference = 0;
   };
-  // The target-side motion bound d_T (m) at displacements u (PhiSt^T q), renewing the reference
-  // when d_T exceeds `renew` (then d_T = 0 and D grows by the move).
-  double targetMotion(Side& target, const Eigen::VectorXd& u, double renew);
+  static constexpr int kReferences = 16;
+  // The target's motion against its references at displacements u (PhiSt^T q): the largest
+  // control point displacement change against each (m); a new reference is taken when the
+  // change against the newest exceeds `renew`.
+  struct TargetMotion {
+    long first = 0;              // number of references.front()
+    std::vector<double> change;  // against each reference, oldest first
+    double moves = 0.0;          // D of the newest reference
+    // Bound on the target's surface motion since a search with record `cl` (m).
+    double since(const Side::Clearance& cl) const;
+  };
+  TargetMotion targetMotion(Side& target, const Eigen::VectorXd& u, double renew);
   struct World {
     Eigen::VectorXd u;       // cps.size() * d, body-frame displacements of the surface points
     Eigen::MatrixXd points;  // ncp x d, deformed control points in world coordinates
@@ -162,7 +181,7 @@ class ContactPair {
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
-                 double targetBound, ContactState* state);
+                 const TargetMotion& motion, ContactState* state);
   // Counts of the closest-point searches: done, and avoided by the clearance bound.
  public:
   long long searches() const { return searches_; }

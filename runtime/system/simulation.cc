@@ -19,6 +19,14 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
+void countSearches(const MultibodySystem& system, SimulationReport& r) {
+  r.contact_searches = r.contact_searches_avoided = 0;
+  for (int c = 0; c < system.numContacts(); ++c) {
+    r.contact_searches += system.contact(c).searches();
+    r.contact_searches_avoided += system.contact(c).searchesAvoided();
+  }
+}
+
 void writeStatistics(ResultWriter& w, const SimulationReport& r) {
   w.setAttribute("status", r.status);
   w.setAttribute("final_time_s", r.final_time);
@@ -39,6 +47,8 @@ void writeStatistics(ResultWriter& w, const SimulationReport& r) {
   w.setAttribute("solver_error_test_failures", r.stats.error_test_failures);
   w.setAttribute("solver_nonlinear_iterations", r.stats.nonlinear_iterations);
   w.setAttribute("solver_convergence_failures", r.stats.convergence_failures);
+  w.setAttribute("contact_point_searches", static_cast<long>(r.contact_searches));
+  w.setAttribute("contact_point_searches_avoided", static_cast<long>(r.contact_searches_avoided));
   const PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
   const char* names[3] = {"before_contact", "during_contact", "after_contact"};
   for (int i = 0; i < 3; ++i) {
@@ -333,12 +343,14 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
       report.completed = true;
       report.status = "completed";
     }
+    countSearches(system, report);
     writeStatistics(writer, report);
     writer.flush();
   } catch (const std::exception& e) {
     report.final_time = t;
     report.wall_time_s = wallBefore + seconds(start, Clock::now());
     report.status = Str() << "failed at t = " << t << " s: " << e.what();
+    countSearches(system, report);
     writeStatistics(writer, report);
     writer.close();
     throw ComputeError(report.status);

@@ -52,6 +52,10 @@ struct SimulationReport {
   // (s; negative when there was no contact).
   double contact_begin = -1.0;
   double contact_end = -1.0;
+  // Closest-point searches of the collocation points over all pairs in this invocation,
+  // and those the clearance bound made unnecessary (runtime/contact/contact_pair.h).
+  long long contact_searches = 0;
+  long long contact_searches_avoided = 0;
 };
 
 // Runs from (0, y0) to settings.end_time. Integration failures are recorded in the file and
