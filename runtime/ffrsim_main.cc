@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <iostream>
 
 #include "common/cli.h"
@@ -230,11 +231,14 @@ void writeProvenance(ffriga::ResultWriter& writer, const ffriga::Scene& scene) {
   writer.setAttribute("dependency_versions", ffriga::dependencyVersionsText());
   writer.setAttribute("threads", static_cast<long>(ffriga::ompThreads()));
   std::string sums;  // sha256sum's format: `sha256sum -c` checks the SIDs
+  std::map<std::string, std::string> hashed;
   for (int b = 0; b < scene.system->numBodies(); ++b) {
     const std::string& f = b < static_cast<int>(scene.sid_files.size()) ? scene.sid_files[b] : "";
     if (f.empty()) continue;
     const std::string path = fs::absolute(f).lexically_normal().string();
-    const std::string sum = ffriga::sha256OfFile(f);
+    auto known = hashed.find(path);  // bodies of one SID file: hashed once
+    if (known == hashed.end()) known = hashed.emplace(path, ffriga::sha256OfFile(f)).first;
+    const std::string& sum = known->second;
     const std::string group = "/bodies/" + scene.system->body(b).name();
     writer.setObjectAttribute(group, "sid_file", path);
     writer.setObjectAttribute(group, "sid_sha256", sum);

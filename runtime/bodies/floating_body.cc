@@ -42,6 +42,8 @@ std::shared_ptr<const RotationalCoupling> FloatingBody3d::sharedCoupling(
   static std::map<const FlexibleBodySid*, std::weak_ptr<const RotationalCoupling>> registry;
   const std::lock_guard<std::mutex> lock(mutex);
   if (auto found = registry[&sid].lock()) return found;
+  for (auto it = registry.begin(); it != registry.end();)  // forget SIDs no body holds
+    it = it->second.expired() ? registry.erase(it) : std::next(it);
   auto made = std::make_shared<const RotationalCoupling>(sid, body);
   registry[&sid] = made;
   return made;
