@@ -47,6 +47,16 @@ FlexibleBodySid surfaceBody(const NurbsPatch& patch, double outward, int nq) {
   return sid;
 }
 
+// Body A: cap opening downwards facing +z at z ~ 0.3; body B: cap facing -z placed so that
+// the two overlap by a few 1e-2 near the middle (3 elastic coordinates each).
+std::pair<std::shared_ptr<FlexibleBodySid>, std::shared_ptr<FlexibleBodySid>> facingCaps() {
+  auto a = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(1.0, 0.0), 1.0, 3));
+  auto b = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(-1.0, 0.45), 1.0, 3));
+  // Orientation of B's normal: x_s0 x x_s1 points +z for both patches; B's outside is -z.
+  b->surfaces[0].outward_sign = -1.0;
+  return {a, b};
+}
+
 }  // namespace
 
 TEST_CASE("closest point: Newton finds the nearest point of curved NURBS surfaces", "[contact]") {
@@ -113,12 +123,7 @@ TEST_CASE("closest point: points just off the surface have proper foot points", 
 
 TEST_CASE("contact forces: equal and opposite, and the gradient of the penalty energy",
           "[contact]") {
-  // Body A: cap opening downwards facing +z at z ~ 0.3; body B: cap facing -z placed so that
-  // the two overlap by a few 1e-2 near the middle.
-  auto a = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(1.0, 0.0), 1.0, 3));
-  auto b = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(-1.0, 0.45), 1.0, 3));
-  // Orientation of B's normal: x_s0 x x_s1 points +z for both patches; B's outside is -z.
-  b->surfaces[0].outward_sign = -1.0;
+  const auto [a, b] = facingCaps();
   FloatingBody3d A("A", a), B("B", b);
   ContactOptions opt;
   opt.penalty = 1e4;
@@ -234,9 +239,7 @@ TEST_CASE("contact clearance bound: a pair with history gives the forces of a fu
   // contact and separation with tumbling and deformation, their forces, active points and
   // energies must agree; they differ only by the closest-point searches' warm starts
   // (tolerance 1e-12 of the length scale), hence 1e-9 relative.
-  auto a = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(1.0, 0.0), 1.0, 3));
-  auto b = std::make_shared<FlexibleBodySid>(surfaceBody(curvedPatch(-1.0, 0.45), 1.0, 3));
-  b->surfaces[0].outward_sign = -1.0;
+  const auto [a, b] = facingCaps();
   FloatingBody3d A("A", a), B("B", b);
   ContactOptions opt;
   opt.penalty = 1e4;
