@@ -53,8 +53,9 @@ namespace {
 const Eigen::Matrix<double, Eigen::Dynamic, 3>& cachedProduct(
     const Eigen::VectorXd& x, Eigen::VectorXd& key, Eigen::Matrix<double, Eigen::Dynamic, 3>& G,
     bool& valid, const std::function<void()>& compute) {
+  // memcmp only on non-empty data (a rigid body has nq = 0 and null data pointers).
   if (valid && key.size() == x.size() &&
-      std::memcmp(key.data(), x.data(), sizeof(double) * x.size()) == 0)
+      (x.size() == 0 || std::memcmp(key.data(), x.data(), sizeof(double) * x.size()) == 0))
     return G;
   compute();
   key = x;
