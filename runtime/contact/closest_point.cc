@@ -52,11 +52,17 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
   const Eigen::VectorXd& hi = surf.domainUpper();
   const double paramScale = (hi - lo).maxCoeff();
   // Per-thread workspaces of the line search (storage reused, no allocation).
+  // The trial point of an accepted step is evaluated with second derivatives and becomes the
+  // next iterate's point: a search from a warm start takes two evaluations, not four.
   thread_local SurfacePoint trial;
   thread_local Eigen::VectorXd s;
+  bool evaluated = false;  // p.point holds the surface at p.s (order 2)
   for (int it = 0; it < o.max_iterations; ++it) {
-    p.element = locate(surf, p.s, p.element);
-    surf.evaluate(p.element, p.s.data(), points, 2, p.point);
+    if (!evaluated) {
+      p.element = locate(surf, p.s, p.element);
+      surf.evaluate(p.element, p.s.data(), points, 2, p.point);
+      evaluated = true;
+    }
     const SpaceVector r = p.point.x - x;
     const Eigen::MatrixXd& X = p.point.dx;
     const ParamVector g = X.transpose() * r;
@@ -93,7 +99,6 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
         if (held[a] && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
           p.orthogonal = false;
       }
-      surf.evaluate(p.element, p.s.data(), points, 1, p.point);
       return true;
     }
     // Newton step on the free directions (Gauss-Newton if H is not positive definite there).
@@ -120,7 +125,7 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     for (int k = 0; k < 30; ++k) {
       s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
       e = locate(surf, s, p.element);
-      surf.evaluate(e, s.data(), points, 0, trial);
+      surf.evaluate(e, s.data(), points, 2, trial);
       if (0.5 * (trial.x - x).squaredNorm() <= phi) break;
       step *= 0.5;
     }
@@ -133,11 +138,11 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
         if (bound && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
           p.orthogonal = false;
       }
-      surf.evaluate(p.element, p.s.data(), points, 1, p.point);
       return true;
     }
     p.s = s;
     p.element = e;
+    std::swap(p.point, trial);  // evaluated at s (order 2), accepted or the last halving
   }
   return false;
 }

@@ -62,6 +62,11 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
   side.xc0.resize(nc, d);
   side.PhiCt = Eigen::MatrixXd::Zero(nq, nc * d);
   side.weight.resize(nc);
+  side.combo_offset.assign(1, 0);
+  side.combo_local.clear();
+  side.combo_value.clear();
+  std::vector<int> local(side.P0.rows(), -1);
+  for (std::size_t k = 0; k < side.cps.size(); ++k) local[side.cps[k]] = static_cast<int>(k);
   side.cache.assign(nc, SurfaceProjection());
   side.clearance.assign(nc, Side::Clearance());
   Eigen::MatrixXd R;
@@ -75,7 +80,10 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
       const int f = side.surface.functions(e)[k];
       side.xc0.row(i) += R(0, k) * side.P0.row(f);
       side.PhiCt.middleCols(i * d, d) += R(0, k) * sid.Phi.middleRows(f * d, d).transpose();
+      side.combo_local.push_back(local[f]);
+      side.combo_value.push_back(R(0, k));
     }
+    side.combo_offset.push_back(static_cast<int>(side.combo_local.size()));
     const double ring = d == 2 ? 2.0 * M_PI * side.xc0(i, 0) : 1.0;
     side.weight(i) = cs.collocation_weights(i) * ring;
   }
@@ -204,7 +212,6 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
                             double* hT, double factor, const TargetMotion& motion,
                             ContactState* state) {
-  (void)wc;
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_, nc = static_cast<int>(sc.xc0.rows());
@@ -220,13 +227,15 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   std::vector<PointResult> res(nc);
   const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
   // Phase 1 (serial): the points, and which of them need a search.
-  const Eigen::VectorXd ub = C.nq() > 0 ? Eigen::VectorXd(sc.PhiCt.transpose() * pc.q)
-                                        : Eigen::VectorXd::Zero(nc * d);
   std::vector<int> search;
   std::vector<Eigen::VectorXd> xs(nc), ys(nc);
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
-    r.xb = sc.xc0.row(i).transpose() + ub.segment(i * d, d);
+    r.xb = sc.xc0.row(i).transpose();
+    if (C.nq() > 0) {  // u_i from the control points' displacements (Side::combo_*)
+      for (int k = sc.combo_offset[i]; k < sc.combo_offset[i + 1]; ++k)
+        r.xb += sc.combo_value[k] * wc.u.segment(sc.combo_local[k] * d, d);
+    }
     xs[i] = pc.origin + pc.A * r.xb;
     const Eigen::VectorXd& x = xs[i];
     bool near = true;
@@ -284,6 +293,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   Eigen::MatrixXd FT = Eigen::MatrixXd::Zero(st.cps.size(), d);  // body-frame forces on T's
   std::vector<int> local(st.P0.rows(), -1);                      // surface control points
   for (std::size_t k = 0; k < st.cps.size(); ++k) local[st.cps[k]] = static_cast<int>(k);
+  std::vector<char> touched(st.cps.size(), 0);
   Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(C.nq());
   Eigen::MatrixXd R;
   for (int i = 0; i < nc; ++i) {
@@ -304,6 +314,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
       const int f = st.surface.functions(r.element)[k];
       FT.row(local[f]) += R(0, k) * fbT.transpose();
+      touched[local[f]] = 1;
       if (T.nq() > 0) PhiTt += R(0, k) * st.PhiSt.middleCols(local[f] * d, d);
     }
     ContactStiffnessTerm term;
@@ -321,10 +332,11 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     }
   }
   if (C.nq() > 0) Eigen::Map<Eigen::VectorXd>(hC + nrC, C.nq()) += fbSum;
-  if (T.nq() > 0) {
-    Eigen::VectorXd flat(st.cps.size() * d);
-    for (std::size_t k = 0; k < st.cps.size(); ++k) flat.segment(k * d, d) = FT.row(k).transpose();
-    Eigen::Map<Eigen::VectorXd>(hT + nrT, T.nq()) += st.PhiSt * flat;
+  if (T.nq() > 0) {  // only the control points that carry force (O(nq) each)
+    Eigen::Map<Eigen::VectorXd> hTe(hT + nrT, T.nq());
+    for (std::size_t k = 0; k < st.cps.size(); ++k) {
+      if (touched[k]) hTe.noalias() += st.PhiSt.middleCols(k * d, d) * FT.row(k).transpose();
+    }
   }
 }
 

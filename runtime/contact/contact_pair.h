@@ -129,7 +129,14 @@ class ContactPair {
                                         // transposed (a point's d columns are contiguous)
     Eigen::MatrixXd xc0;                // nc x d, collocation points, undeformed body frame
     Eigen::MatrixXd PhiCt;              // nq x (nc * d): Phi at collocation point i in columns
-                                        // i d .. i d + d - 1 (transposed, contiguous)
+                                        // i d .. i d + d - 1 (transposed, contiguous); read
+                                        // only for active points
+    // Collocation point i as a combination of the surface's control points (cps order):
+    // u_i = sum_k R_k(xi_i) u_k over k in [combo_offset[i], combo_offset[i + 1]), so the
+    // points' displacements come from those of the control points without a product with
+    // PhiCt (O(nc) instead of O(nq nc)).
+    std::vector<int> combo_offset, combo_local;
+    std::vector<double> combo_value;
     Eigen::VectorXd weight;             // nc, collocation weight incl. the ring factor (m^2)
     std::vector<SurfaceProjection> cache;  // warm starts, one per collocation point
     // Clearance bound (header comment), one per collocation point as a contact point.
