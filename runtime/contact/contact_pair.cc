@@ -1,5 +1,6 @@
 #include "runtime/contact/contact_pair.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -180,6 +181,12 @@ double ContactPair::TargetMotion::since(const Side::Clearance& cl) const {
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                            const BodyPose& pb, double* hA, double* hB, ContactState* state) {
   terms_.clear();
+  active_.clear();
+  terms_formed_ = false;
+  bodies_[0] = &A;
+  bodies_[1] = &B;
+  poses_[0] = pa;
+  poses_[1] = pb;
   const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
   // Bounding-box pre-check: apart means no work.
   for (int c = 0; c < dim_; ++c) {
@@ -310,20 +317,12 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     T.addRigidPointForce(pt, r.xt, minus, hT);
     const Eigen::VectorXd fbT = pt.A.transpose() * minus;
     st.surface.basis(r.element, r.s.data(), 0, R);
-    Eigen::MatrixXd PhiTt = Eigen::MatrixXd::Zero(T.nq(), d);  // Phi at x_T, transposed
     for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
       const int f = st.surface.functions(r.element)[k];
       FT.row(local[f]) += R(0, k) * fbT.transpose();
       touched[local[f]] = 1;
-      if (T.nq() > 0) PhiTt += R(0, k) * st.PhiSt.middleCols(local[f] * d, d);
     }
-    ContactStiffnessTerm term;
-    term.body_c = index_[c];
-    term.body_t = index_[1 - c];
-    term.k = options_.penalty * sc.weight(i) * factor;
-    C.pointGradients(pc, r.xb, sc.PhiCt.middleCols(i * d, d).transpose(), r.n, term.bvC, term.bpC);
-    T.pointGradients(pt, r.xt, PhiTt.transpose(), r.n, term.bvT, term.bpT);
-    terms_.push_back(std::move(term));
+    active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor, r.s, r.xb, r.xt, r.n});
     if (state) {
       state->force.head(d) += r.f;
       state->max_penetration = std::max(state->max_penetration, -r.gap);
@@ -338,6 +337,40 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
       if (touched[k]) hTe.noalias() += st.PhiSt.middleCols(k * d, d) * FT.row(k).transpose();
     }
   }
+}
+
+const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {
+  if (terms_formed_) return terms_;
+  terms_.clear();
+  terms_.reserve(active_.size());
+  const int d = dim_;
+  Eigen::MatrixXd R, PhiTt;
+  for (const ActivePoint& a : active_) {
+    const Side& sc = side_[a.c];
+    const Side& st = side_[1 - a.c];
+    const BodyModel& C = *bodies_[a.c];
+    const BodyModel& T = *bodies_[1 - a.c];
+    // Phi at the foot point x_T, transposed: the surface basis at s over T's control points.
+    PhiTt.setZero(T.nq(), d);
+    if (T.nq() > 0) {
+      st.surface.basis(a.element, a.s.data(), 0, R);
+      for (int k = 0; k < st.surface.numFunctions(a.element); ++k) {
+        const int f = st.surface.functions(a.element)[k];
+        const auto it = std::lower_bound(st.cps.begin(), st.cps.end(), f);
+        PhiTt += R(0, k) * st.PhiSt.middleCols((it - st.cps.begin()) * d, d);
+      }
+    }
+    ContactStiffnessTerm term;
+    term.body_c = index_[a.c];
+    term.body_t = index_[1 - a.c];
+    term.k = a.k;
+    C.pointGradients(poses_[a.c], a.xb, sc.PhiCt.middleCols(a.i * d, d).transpose(), a.n, term.bvC,
+                     term.bpC);
+    T.pointGradients(poses_[1 - a.c], a.xt, PhiTt.transpose(), a.n, term.bvT, term.bpT);
+    terms_.push_back(std::move(term));
+  }
+  terms_formed_ = true;
+  return terms_;
 }
 
 Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& pa,

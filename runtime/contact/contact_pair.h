@@ -113,8 +113,9 @@ class ContactPair {
   // initial state (a full closest-point search per point: not for every step).
   Penetration deepestPenetration(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                                  const BodyPose& pb) const;
-  // Linearisation of the active points of the last evaluate().
-  const std::vector<ContactStiffnessTerm>& stiffnessTerms() const { return terms_; }
+  // Linearisation of the active points of the last evaluate(), formed on the first call
+  // after it (O(nq) per point and body: right-hand sides that need no Jacobian skip it).
+  const std::vector<ContactStiffnessTerm>& stiffnessTerms() const;
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
   // fills `state` if given.
   void evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B, const BodyPose& pb,
@@ -198,7 +199,19 @@ class ContactPair {
   long long searches_ = 0, avoided_ = 0;
 
   std::string name_;
-  std::vector<ContactStiffnessTerm> terms_;
+  // What stiffnessTerms() needs of each active point of the last evaluate(): the contact
+  // side c, collocation point i, the foot point (element, s) on the target, body points,
+  // normal and k; and the bodies and poses of that evaluation.
+  struct ActivePoint {
+    int c = 0, i = 0, element = -1;
+    double k = 0.0;
+    Eigen::VectorXd s, xb, xt, n;
+  };
+  std::vector<ActivePoint> active_;
+  const BodyModel* bodies_[2] = {nullptr, nullptr};
+  BodyPose poses_[2];
+  mutable std::vector<ContactStiffnessTerm> terms_;
+  mutable bool terms_formed_ = true;
   int index_[2];
   ContactOptions options_;
   Side side_[2];
