@@ -52,8 +52,9 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
   const Eigen::VectorXd& hi = surf.domainUpper();
   const double paramScale = (hi - lo).maxCoeff();
   // Per-thread workspaces of the line search (storage reused, no allocation).
-  // The trial point of an accepted step is evaluated with second derivatives and becomes the
-  // next iterate's point: a search from a warm start takes two evaluations, not four.
+  // The trial point of an accepted full step is evaluated with second derivatives and
+  // becomes the next iterate's point: a search from a warm start takes two evaluations,
+  // not four.
   thread_local SurfacePoint trial;
   thread_local Eigen::VectorXd s;
   bool evaluated = false;  // p.point holds the surface at p.s (order 2)
@@ -122,10 +123,14 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     const double phi = 0.5 * r.squaredNorm();
     s = p.s;
     int e = p.element;
-    for (int k = 0; k < 30; ++k) {
+    // The full step's trial is evaluated to second order (it is the next iterate when
+    // accepted, as near the solution); the halvings, which near round-off can run to the
+    // end, only to order 0.
+    int k = 0;
+    for (; k < 30; ++k) {
       s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
       e = locate(surf, s, p.element);
-      surf.evaluate(e, s.data(), points, 2, trial);
+      surf.evaluate(e, s.data(), points, k == 0 ? 2 : 0, trial);
       if (0.5 * (trial.x - x).squaredNorm() <= phi) break;
       step *= 0.5;
     }
@@ -142,7 +147,11 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     }
     p.s = s;
     p.element = e;
-    std::swap(p.point, trial);  // evaluated at s (order 2), accepted or the last halving
+    if (k == 0) {
+      std::swap(p.point, trial);  // the full step, evaluated at s to order 2
+    } else {
+      evaluated = false;  // a halved step: evaluate at the new s to order 2
+    }
   }
   return false;
 }
