@@ -3,13 +3,14 @@ reduced sphere, ffrsim simulates the head-on impact of two of them, and the figu
 read from the result file's attributes (schemas/result_format.md), not from stdout.
 
 usage: check_impact.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR BODY SCENE FORCE_LIMIT DURATION_LIMIT
-                       [--stress]
+                       [--stress] [--stress-depth=PCT]
 
 FORCE_LIMIT and DURATION_LIMIT (%): the maximum force and the contact duration against
 Hertz (issue 5: 1 % and 2 % for the 2D models; 5 % for the coarse 3D check).
 --stress: also the von Mises stress on the symmetry axis at the force peak against Hertz
 (issue 12, paper Fig. 10): its subsurface maximum within 3 % of Hertz's 0.620 p0 and at
-Hertz's depth 0.48 a within 5 %, for both bodies.
+Hertz's depth 0.48 a within 5 % (or PCT %, for meshes coarser along the axis), for both
+bodies.
 """
 import hashlib
 import os
@@ -23,6 +24,10 @@ from result_checks import Checks
 igaprep, ffrsim, source, out, body, scene = sys.argv[1:7]
 force_limit, duration_limit = float(sys.argv[7]), float(sys.argv[8])
 stress = "--stress" in sys.argv[9:]
+depth_limit = 5.0
+for arg in sys.argv[9:]:
+    if arg.startswith("--stress-depth="):
+        depth_limit = float(arg.split("=", 1)[1])
 os.makedirs(out, exist_ok=True)
 check = Checks()
 
@@ -85,9 +90,10 @@ with h5py.File(result, "r") as f:
             check(abs(ratio) <= 0.03,
                   f"{b}: von Mises maximum on the axis {s['von_mises_interior_max_Pa'] / p0:.4f} p0, "
                   f"{100 * ratio:+.2f} % from Hertz's {s['hertz_von_mises_max_Pa'] / p0:.4f} p0 (3 %)")
-            check(abs(depth) <= 0.05,
+            check(abs(depth) <= depth_limit / 100,
                   f"{b}: at depth {s['von_mises_interior_max_distance_m'] / r:.4f} a, "
-                  f"{100 * depth:+.2f} % from Hertz's {s['hertz_von_mises_max_depth_m'] / r:.4f} a (5 %)")
+                  f"{100 * depth:+.2f} % from Hertz's {s['hertz_von_mises_max_depth_m'] / r:.4f} a "
+                  f"({depth_limit:g} %)")
         check(abs(f["stress_lines"].attrs["time_s"] - a["max_contact_force_time_s"]) == 0.0,
               "stress lines at the time of the force peak")
 check.exit()
