@@ -131,7 +131,7 @@ class ContactPair {
     Eigen::MatrixXd xc0;                // nc x d, collocation points, undeformed body frame
     Eigen::MatrixXd PhiCt;              // nq x (nc * d): Phi at collocation point i in columns
                                         // i d .. i d + d - 1 (transposed, contiguous); read
-                                        // only for active points
+                                        // for active points and the initial penetration scan
     // Collocation point i as a combination of the surface's control points (cps order):
     // u_i = sum_k R_k(xi_i) u_k over k in [combo_offset[i], combo_offset[i + 1]), so the
     // points' displacements come from those of the control points without a product with
