@@ -66,8 +66,8 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
   side.combo_offset.assign(1, 0);
   side.combo_local.clear();
   side.combo_value.clear();
-  std::vector<int> local(side.P0.rows(), -1);
-  for (std::size_t k = 0; k < side.cps.size(); ++k) local[side.cps[k]] = static_cast<int>(k);
+  side.local.assign(side.P0.rows(), -1);
+  for (std::size_t k = 0; k < side.cps.size(); ++k) side.local[side.cps[k]] = static_cast<int>(k);
   side.cache.assign(nc, SurfaceProjection());
   side.clearance.assign(nc, Side::Clearance());
   Eigen::MatrixXd R;
@@ -81,7 +81,7 @@ void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
       const int f = side.surface.functions(e)[k];
       side.xc0.row(i) += R(0, k) * side.P0.row(f);
       side.PhiCt.middleCols(i * d, d) += R(0, k) * sid.Phi.middleRows(f * d, d).transpose();
-      side.combo_local.push_back(local[f]);
+      side.combo_local.push_back(side.local[f]);
       side.combo_value.push_back(R(0, k));
     }
     side.combo_offset.push_back(static_cast<int>(side.combo_local.size()));
@@ -298,8 +298,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   // Serial sums in point order (independent of the thread count).
   const int nrC = C.numRigidVelocities(), nrT = T.numRigidVelocities();
   Eigen::MatrixXd FT = Eigen::MatrixXd::Zero(st.cps.size(), d);  // body-frame forces on T's
-  std::vector<int> local(st.P0.rows(), -1);                      // surface control points
-  for (std::size_t k = 0; k < st.cps.size(); ++k) local[st.cps[k]] = static_cast<int>(k);
+  const std::vector<int>& local = st.local;                      // surface control points
   std::vector<char> touched(st.cps.size(), 0);
   Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(C.nq());
   Eigen::MatrixXd R;
@@ -322,7 +321,8 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
       FT.row(local[f]) += R(0, k) * fbT.transpose();
       touched[local[f]] = 1;
     }
-    active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor, r.s, r.xb, r.xt, r.n});
+    active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
+                       R.row(0).transpose(), r.xb, r.xt, r.n});
     if (state) {
       state->force.head(d) += r.f;
       state->max_penetration = std::max(state->max_penetration, -r.gap);
@@ -344,7 +344,7 @@ const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {
   terms_.clear();
   terms_.reserve(active_.size());
   const int d = dim_;
-  Eigen::MatrixXd R, PhiTt;
+  Eigen::MatrixXd PhiTt;
   for (const ActivePoint& a : active_) {
     const Side& sc = side_[a.c];
     const Side& st = side_[1 - a.c];
@@ -353,11 +353,9 @@ const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {
     // Phi at the foot point x_T, transposed: the surface basis at s over T's control points.
     PhiTt.setZero(T.nq(), d);
     if (T.nq() > 0) {
-      st.surface.basis(a.element, a.s.data(), 0, R);
       for (int k = 0; k < st.surface.numFunctions(a.element); ++k) {
         const int f = st.surface.functions(a.element)[k];
-        const auto it = std::lower_bound(st.cps.begin(), st.cps.end(), f);
-        PhiTt += R(0, k) * st.PhiSt.middleCols((it - st.cps.begin()) * d, d);
+        PhiTt += a.basis(k) * st.PhiSt.middleCols(st.local[f] * d, d);
       }
     }
     ContactStiffnessTerm term;

@@ -136,6 +136,7 @@ class ContactPair {
     // u_i = sum_k R_k(xi_i) u_k over k in [combo_offset[i], combo_offset[i + 1]), so the
     // points' displacements come from those of the control points without a product with
     // PhiCt (O(nc) instead of O(nq nc)).
+    std::vector<int> local;             // body control point -> its index in cps (-1: none)
     std::vector<int> combo_offset, combo_local;
     std::vector<double> combo_value;
     Eigen::VectorXd weight;             // nc, collocation weight incl. the ring factor (m^2)
@@ -200,12 +201,12 @@ class ContactPair {
 
   std::string name_;
   // What stiffnessTerms() needs of each active point of the last evaluate(): the contact
-  // side c, collocation point i, the foot point (element, s) on the target, body points,
-  // normal and k; and the bodies and poses of that evaluation.
+  // side c, collocation point i, the foot point's element on the target and its basis
+  // values there, body points, normal and k; and the bodies and poses of that evaluation.
   struct ActivePoint {
     int c = 0, i = 0, element = -1;
     double k = 0.0;
-    Eigen::VectorXd s, xb, xt, n;
+    Eigen::VectorXd basis, xb, xt, n;
   };
   std::vector<ActivePoint> active_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
