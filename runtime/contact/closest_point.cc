@@ -124,11 +124,10 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     s = p.s;
     int e = p.element;
     // The full step's trial is evaluated to second order (it is the next iterate when
-    // accepted, as near the solution); the halvings, which near round-off can run to the
-    // end, only to order 0.
+    // accepted, as near the solution); the halvings only to order 0.
     // A step whose predicted decrease of phi, -1/2 g^T step, is below phi's round-off (a few
     // ulps) cannot be tested by it: the point is a minimum to round-off (seen for points
-    // beyond an edge, |r| ~ 0.1 mm, where 15-30 halvings used to end in the same place).
+    // beyond an edge, |r| ~ 0.1 mm, where up to 22 halvings used to end in the same place).
     const bool belowRoundOff =
         -0.5 * gf.dot(sf) <= 8.0 * std::numeric_limits<double>::epsilon() * phi;
     int k = 0;
