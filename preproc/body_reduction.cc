@@ -200,6 +200,11 @@ FlexibleBodySid preprocessBody(const BodyConfig& config,
   for (const auto& [step, t] : red.timings) {
     if (log) log(Str() << "  reduction step " << step << ": " << t << " s");
   }
+  if (log && red.factor_nonzeros > 0.0) {
+    log(Str() << "  factor of K_ii: " << red.factor_nonzeros << " entries ("
+              << red.factor_nonzeros * 8.0 / (1024.0 * 1024.0 * 1024.0) << " GiB), "
+              << red.factor_flops << " flops");
+  }
   summary->factor_rcond = red.factor_rcond;
   summary->arpack_iterations = red.arpack_iterations;
   sid.normal_modes = red.normal_modes;

@@ -162,6 +162,8 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
     throw ComputeError("Craig-Bampton reduction: factorisation of K_ii failed: " + message);
   }
   out->factor_rcond = chol.rcond();
+  out->factor_nonzeros = chol.factorNonzeros();
+  out->factor_flops = chol.factorFlops();
   // A crude estimate (ratio of pivots); singular matrices give round-off level values.
   if (!std::isfinite(out->factor_rcond)) {
     throw ComputeError(

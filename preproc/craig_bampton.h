@@ -50,6 +50,8 @@ struct ReducedModel {
   int constraint_modes = 0;
   Eigen::VectorXd normal_mode_omega2;  // fixed-interface (CB) or free-free (modal) eigenvalues
   double factor_rcond = 0.0;           // CHOLMOD's estimate for K_ii (CB)
+  double factor_nonzeros = 0.0;        // stored entries of K_ii's Cholesky factor (CB)
+  double factor_flops = 0.0;           // operations of its numeric factorisation (CB)
   int arpack_iterations = 0;
   std::vector<std::pair<std::string, double>> timings;  // (step, wall time in s)
 };

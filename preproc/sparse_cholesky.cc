@@ -83,10 +83,14 @@ SparseCholesky::Status SparseCholesky::analyze(const SparseMatrix& upper, std::s
   factor_ = cholmod_analyze(&A, common_);
   n_ = static_cast<int>(upper.rows());
   factorized_ = false;
+  factor_flops_ = common_->fl;
   if (!factor_) {
     if (message) *message = "symbolic analysis failed: " + lastCholmodError;
     return common_->status == CHOLMOD_OUT_OF_MEMORY ? Status::kOutOfMemory : Status::kFailed;
   }
+  // A supernodal factor stores its supernodes' dense blocks (xsize, known after the
+  // analysis), more than the fundamental count lnz.
+  factor_nonzeros_ = factor_->is_super ? static_cast<double>(factor_->xsize) : common_->lnz;
   return translate(common_->status, message, "symbolic analysis");
 }
 

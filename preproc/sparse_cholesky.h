@@ -35,6 +35,10 @@ class SparseCholesky {
   // Crude reciprocal condition estimate (min/max diagonal of L, squared), 0 if not factorised.
   double rcond() const;
   int size() const { return n_; }
+  // From the symbolic analysis: stored entries of L and the floating-point operations of
+  // one numeric factorisation (CHOLMOD's counts for the ordering it chose).
+  double factorNonzeros() const { return factor_nonzeros_; }
+  double factorFlops() const { return factor_flops_; }
 
   // X = A^{-1} B for any number of columns (solved in blocks to bound the workspace).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
@@ -46,6 +50,8 @@ class SparseCholesky {
   cholmod_factor_struct* factor_ = nullptr;
   int n_ = 0;
   bool factorized_ = false;
+  double factor_nonzeros_ = 0.0;
+  double factor_flops_ = 0.0;
 };
 
 }  // namespace ffriga
