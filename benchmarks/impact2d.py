@@ -17,55 +17,17 @@ usage: benchmarks/impact2d.py [--build build] [--out build/studies] [-j 2] [--sw
                               [--plot out.png] [--json out.json]
 """
 import argparse
-import csv
 import json
 import os
-import subprocess
 import sys
 
-import h5py
-import numpy as np
+from paper_study import hertz_curve, force_history, run_study
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-STUDIES = os.path.join(ROOT, "benchmarks", "studies")
 # Paper Table 1: model -> (ndof, normal modes, interface control points).
 PAPER = {"h3": (3856, 10, 41), "h4": (2884, 10, 40), "h5": (2728, 10, 42),
          "h6": (1708, 10, 41), "g3": (9216, 10, 41), "g4": (7440, 10, 40),
          "g5": (6726, 10, 40), "g6": (5368, 10, 39)}
-
-
-def run_study(name, a):
-    """The study through its workflow; returns its table and timings rows."""
-    study = os.path.join(STUDIES, f"{name}.yaml")
-    cmd = ["snakemake", "-s", os.path.join(STUDIES, "Snakefile"), "-j", str(a.jobs), "-q",
-           "--config", f"study={study}", f"bin={os.path.join(a.build, 'bin')}", f"out={a.out}"]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    if p.returncode != 0:
-        sys.exit(f"impact2d: the study {name} failed (exit {p.returncode}):\n"
-                 f"{p.stdout[-2000:]}{p.stderr[-2000:]}")
-    base = os.path.join(a.out, name, name)
-    with open(base + ".csv", newline="") as f:
-        table = list(csv.DictReader(f))
-    with open(base + "_timings.csv", newline="") as f:
-        timings = {r["run"]: r for r in csv.DictReader(f)}
-    return table, timings
-
-
-def hertz_curve(fmax, duration):
-    """Hertz force history by integrating m* d'' = -K d^1.5 (shape only: scaled to fmax)."""
-    # Dimensionless: x'' = -x^1.5 from (0, 1); scale to the printed fmax and duration.
-    dt, x, v, xs = 1e-4, 0.0, 1.0, [0.0]
-    while True:
-        a1 = -max(x, 0) ** 1.5
-        xh, vh = x + 0.5 * dt * v, v + 0.5 * dt * a1
-        a2 = -max(xh, 0) ** 1.5
-        x, v = x + dt * vh, v + dt * a2
-        if x <= 0:
-            break
-        xs.append(x)
-    f = np.array(xs) ** 1.5
-    t = np.linspace(0, duration, len(f))
-    return t, f / f.max() * fmax
 
 
 def print_table1(table, timings):
@@ -118,12 +80,8 @@ def plot_fig8(table, a):
     th, fh = hertz_curve(float(done[0]["hertz_max_force_N"]), float(done[0]["hertz_duration_s"]))
     ax.plot(th * 1e6, fh, "k-", lw=2.5, label="Hertz")
     for r in done:
-        with open(os.path.join(a.out, "table1_models", "runs", r["run"], "summary.json")) as f:
-            result = json.load(f)["result"]
-        with h5py.File(result, "r") as f:
-            pair = list(f["contacts"].keys())[0]
-            ax.plot(f["time"][:] * 1e6, f["contacts"][pair]["normal_force"][:], lw=1,
-                    label=f"sphere2d_{r['model']}")
+        t, f = force_history(a.out, "table1_models", r["run"])
+        ax.plot(t * 1e6, f, lw=1, label=f"sphere2d_{r['model']}")
     ax.set_xlabel("time [µs]")
     ax.set_ylabel("normal contact force [N]")
     ax.set_title("Two axisymmetric steel spheres, 0.1 m/s each (paper Fig. 8)")
@@ -142,11 +100,11 @@ def main():
     ap.add_argument("--plot", default=None)
     ap.add_argument("--json", default=None)
     a = ap.parse_args()
-    table, timings = run_study("table1_models", a)
+    table, timings = run_study("table1_models", a.build, a.out, a.jobs, "impact2d")
     print_table1(table, timings)
     summary = {"table1_models": {"rows": table, "timings": list(timings.values())}}
     if a.sweep:
-        sweep, _ = run_study("fig7_penalty", a)
+        sweep, _ = run_study("fig7_penalty", a.build, a.out, a.jobs, "impact2d")
         print_sweep(sweep)
         print(f"picture: {os.path.join(a.out, 'fig7_penalty', 'fig7_penalty_penalty_factor.png')}")
         summary["fig7_penalty"] = {"rows": sweep}
