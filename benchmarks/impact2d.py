@@ -16,12 +16,11 @@ _timings.csv), so a second invocation only prints: the workflow reruns nothing.
 usage: benchmarks/impact2d.py [--build build] [--out build/studies] [-j 2] [--sweep]
                               [--plot out.png] [--json out.json]
 """
-import argparse
 import json
 import os
 import sys
 
-from paper_study import hertz_curve, force_history, run_study
+from paper_study import arguments, force_history, hertz_curve, run_study, save_plot
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Paper Table 1: model -> (ndof, normal modes, interface control points).
@@ -86,19 +85,13 @@ def plot_fig8(table, a):
     ax.set_ylabel("normal contact force [N]")
     ax.set_title("Two axisymmetric steel spheres, 0.1 m/s each (paper Fig. 8)")
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(a.plot, dpi=120)
-    print(f"\nplot: {a.plot}")
+    save_plot(fig, a.plot)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "build", "studies"))
+    ap = arguments(__doc__)
     ap.add_argument("-j", "--jobs", type=int, default=2)
     ap.add_argument("--sweep", action="store_true", help="also the Fig. 7 penalty sweep")
-    ap.add_argument("--plot", default=None)
-    ap.add_argument("--json", default=None)
     a = ap.parse_args()
     table, timings = run_study("table1_models", a.build, a.out, a.jobs, "impact2d")
     print_table1(table, timings)

@@ -15,19 +15,20 @@ global reference's igaprep needs about 17 GB).
   computation times (Fig. 13).
 
 Each figure is read from the studies' tables (build/studies/<study>/<study>.csv and
-_timings.csv), so a second invocation only prints: the workflow reruns nothing.
+_timings.csv), so a second invocation only prints: the workflow reruns nothing, unless
+igaprep's or ffrsim's version (git revision) changed, which is part of every SID and run
+hash; then everything is built and run again (~20 min).
 
 usage: benchmarks/impact3d.py [--build build] [--out build/studies] [--no-2d]
                               [--rhs-cost] [--plot out.png] [--json out.json]
 """
-import argparse
 import glob
 import json
 import os
 import subprocess
 import sys
 
-from paper_study import hertz_curve, force_history, run_study
+from paper_study import arguments, force_history, hertz_curve, run_study, save_plot
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = "table2_models"
@@ -144,19 +145,13 @@ def plot(done, a):
     ax3.set_ylabel("wall time [s] (2 cores)")
     ax3.set_title("computation times (paper Fig. 13)")
     ax3.legend()
-    fig.tight_layout()
-    fig.savefig(a.plot, dpi=120)
-    print(f"\nplot: {a.plot}")
+    save_plot(fig, a.plot)
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "build", "studies"))
+    ap = arguments(__doc__)
     ap.add_argument("--no-2d", action="store_true", help="skip the 2D study beside")
     ap.add_argument("--rhs-cost", action="store_true", help="also the rhs cost against nq")
-    ap.add_argument("--plot", default=None)
-    ap.add_argument("--json", default=None)
     a = ap.parse_args()
     # -j 2 with 2 threads per job (the study's resources): one job at a time.
     table, timings = run_study(STUDY, a.build, a.out, 2, "impact3d")

@@ -1,6 +1,7 @@
 """What the paper benchmarks impact2d.py (Sect. 5) and impact3d.py (Sect. 6) share: running
 a study of benchmarks/studies/ through its Snakemake workflow, reading its tables, the
 Hertz force history and the force histories of its runs' result files."""
+import argparse
 import csv
 import json
 import os
@@ -56,3 +57,19 @@ def force_history(out, study, run):
     with h5py.File(result, "r") as f:
         pair = list(f["contacts"].keys())[0]
         return f["time"][:], f["contacts"][pair]["normal_force"][:]
+
+
+def arguments(doc):
+    """The options both benchmarks take: --build, --out, --plot, --json."""
+    ap = argparse.ArgumentParser(description=doc.split("\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "build", "studies"))
+    ap.add_argument("--plot", default=None)
+    ap.add_argument("--json", default=None)
+    return ap
+
+
+def save_plot(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    print(f"\nplot: {path}")
