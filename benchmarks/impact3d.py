@@ -22,13 +22,15 @@ hash; then everything is built and run again (~20 min).
 usage: benchmarks/impact3d.py [--build build] [--out build/studies] [--no-2d]
                               [--rhs-cost] [--plot out.png] [--json out.json]
 """
-import glob
 import json
 import os
 import subprocess
 import sys
 
-from paper_study import arguments, force_history, hertz_curve, run_study, save_plot
+import h5py
+
+from paper_study import (arguments, force_history, hertz_curve, run_study, run_summary,
+                         save_plot)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY = "table2_models"
@@ -91,13 +93,12 @@ def two_d_peaks(a):
     return {m: float(r["max_contact_force_N"]) for m, (r, _) in completed(table, timings).items()}
 
 
-def rhs_cost(a):
-    """build/bin/rhs_cost on the reference's SID; returns its JSON object."""
-    sids = glob.glob(os.path.join(a.out, "sids", "sphere3d_g5-*.sid.h5"))
-    if not sids:
-        sys.exit("impact3d: --rhs-cost needs the study's sphere3d_g5 SID (run the study first)")
-    sid = max(sids, key=os.path.getmtime)
-    import h5py
+def rhs_cost(done, a):
+    """build/bin/rhs_cost on the SID the reference's run used; returns its JSON object."""
+    if "g5" not in done:
+        sys.exit("impact3d: --rhs-cost needs the study's completed run of g5")
+    used = run_summary(a.out, STUDY, done["g5"][0]["run"])["sids"]["sphere3d_g5.sid.h5"]
+    sid = os.path.join(a.out, "sids", used)
     with h5py.File(sid, "r") as f:
         nq = int(f.attrs["nq"])
     cmd = [os.path.join(a.build, "bin", "rhs_cost"), sid, "21"] + [str(n) for n in RHS_NQ + [nq]]
@@ -162,7 +163,7 @@ def main():
     print_table2(done, two_d)
     summary = {STUDY: {"rows": table, "timings": list(timings.values())}, "forces_2d": two_d}
     if a.rhs_cost:
-        summary["rhs_cost"] = rhs_cost(a)
+        summary["rhs_cost"] = rhs_cost(done, a)
     if a.plot:
         plot(done, a)
     if a.json:

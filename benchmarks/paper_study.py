@@ -50,11 +50,15 @@ def hertz_curve(fmax, duration):
     return t, f / f.max() * fmax
 
 
+def run_summary(out, study, run):
+    """The summary.json the workflow wrote for one run (its result file, its SIDs, ...)."""
+    with open(os.path.join(out, study, "runs", run, "summary.json")) as f:
+        return json.load(f)
+
+
 def force_history(out, study, run):
     """(time [s], normal force [N]) of the first contact pair of one run's result file."""
-    with open(os.path.join(out, study, "runs", run, "summary.json")) as f:
-        result = json.load(f)["result"]
-    with h5py.File(result, "r") as f:
+    with h5py.File(run_summary(out, study, run)["result"], "r") as f:
         pair = list(f["contacts"].keys())[0]
         return f["time"][:], f["contacts"][pair]["normal_force"][:]
 
