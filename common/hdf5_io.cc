@@ -152,12 +152,18 @@ std::vector<double> readArray(const Context& c, hid_t parent, const std::string&
 
 Eigen::MatrixXd readMatrix(const Context& c, hid_t parent, const std::string& name) {
   std::vector<hsize_t> dims;
-  const std::vector<double> data = readArray(c, parent, name, &dims);
+  Handle set = openDataset(c, parent, name, &dims);
   if (dims.size() != 2)
     c.fail(Str() << "dataset " << name << " has rank " << dims.size() << ", expected 2");
+  // Straight into a row-major matrix (the file's order), then one transposing copy: large
+  // mode matrices are read without a third copy in between.
   using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  return Eigen::Map<const RowMajor>(data.data(), static_cast<Eigen::Index>(dims[0]),
-                                    static_cast<Eigen::Index>(dims[1]));
+  RowMajor r(static_cast<Eigen::Index>(dims[0]), static_cast<Eigen::Index>(dims[1]));
+  if (r.size() > 0) {
+    c.check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
+            "read dataset " + name, 0);
+  }
+  return r;
 }
 
 Eigen::VectorXd readVector(const Context& c, hid_t parent, const std::string& name) {

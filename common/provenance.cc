@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 #include <omp.h>
+#include <openssl/crypto.h>
 #include <sundials/sundials_config.h>
 #include <suitesparse/SuiteSparse_config.h>
 
@@ -31,6 +32,7 @@ std::vector<std::pair<std::string, std::string>> dependencyVersions() {
                             << SUITESPARSE_SUBSUB_VERSION},
       // yaml-cpp has no version macro: the one CMake found (common/CMakeLists.txt).
       {"yaml-cpp", FFRIGA_YAML_CPP_VERSION},
+      {"OpenSSL", OpenSSL_version(OPENSSL_VERSION_STRING)},  // libcrypto: SHA-256
   };
 }
 

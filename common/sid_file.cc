@@ -117,7 +117,7 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
   }
 }
 
-void readBodyDescription(const Context& c, hid_t file, FlexibleBodySid* sid) {
+void readBodyDescription(const Context& c, hid_t file, SidContent content, FlexibleBodySid* sid) {
   const int s = sid->space_dim, nq = sid->nq();
   Handle m = h5::openGroup(c, file, "material");
   sid->material.youngs_modulus = h5::readScalar(c, m, "youngs_modulus");
@@ -130,7 +130,7 @@ void readBodyDescription(const Context& c, hid_t file, FlexibleBodySid* sid) {
   const Eigen::VectorXd centre = h5::readVector(c, g, "centre");
   if (centre.size() != 3) c.fail("/geometry/centre must have 3 components");
   sid->geometry.centre = centre;
-  if (h5::exists(file, "visualisation")) {
+  if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
     Handle v = h5::openGroup(c, file, "visualisation");
     sid->mesh.subdivisions = h5::readIntAttribute(c, v, "subdivisions");
     sid->mesh.cells = h5::readIntMatrix(c, v, "cells");
@@ -255,7 +255,7 @@ void writeSid(const FlexibleBodySid& sid, const std::string& path) {
   }
 }
 
-FlexibleBodySid readSid(const std::string& path) {
+FlexibleBodySid readSid(const std::string& path, SidContent content) {
   h5::silenceErrors();
   Context c{path, true};
   {
@@ -346,7 +346,7 @@ FlexibleBodySid readSid(const std::string& path) {
   Handle s = h5::openGroup(c, file, "contact_surfaces");
   for (const std::string& name : h5::listGroup(c, s))
     sid.surfaces.push_back(readSurface(c, s, name));
-  readBodyDescription(c, file, &sid);
+  readBodyDescription(c, file, content, &sid);
 
   Handle p = h5::openGroup(c, file, "provenance");
   sid.input_yaml = h5::readStringAttribute(c, p, "input_yaml");

@@ -18,7 +18,12 @@ namespace ffriga {
 inline constexpr const char* kSidFormat = "ffriga-sid";
 inline constexpr int kSidFormatVersion = 3;
 
+// What readSid reads: everything, or everything but the visualisation mesh (then
+// sid.mesh.empty()): its sampled displacement and stress modes are most of a large SID's
+// bytes (sphere3d_h3: 594 of 1181 MB) and only visualisation frames use them.
+enum class SidContent { kAll, kWithoutMesh };
+
 void writeSid(const FlexibleBodySid& sid, const std::string& path);
-FlexibleBodySid readSid(const std::string& path);
+FlexibleBodySid readSid(const std::string& path, SidContent content = SidContent::kAll);
 
 }  // namespace ffriga

@@ -66,9 +66,9 @@ Exit codes: 0 success, 2 bad input or usage, 1 failure while computing (or inter
 )";
 
 // The SID reader: common/sid_file.h (issue 4) when this source tree has it.
-ffriga::FlexibleBodySid loadSid(const std::string& path) {
+ffriga::FlexibleBodySid loadSid(const std::string& path, ffriga::SidContent content) {
 #ifdef FFRIGA_HAVE_SID_FILE
-  return ffriga::readSid(path);
+  return ffriga::readSid(path, content);
 #else
   throw ffriga::InputError(ffriga::Str() << path << ": this build of ffrsim cannot read SID files "
                                          << "(common/sid_file.h is missing from the source tree)");
@@ -345,10 +345,10 @@ int main(int argc, char** argv) {
     // files are checked as the scene names them, before each is read).
     ffriga::checkOutputWritable(output, restart ? "--restart" : "-o");
     if (!restart) ffriga::refuseInputAsOutput(output, "-o", o.positional[0], "the scene file");
-    auto guardedLoadSid = [&](const std::string& path) {
+    auto guardedLoadSid = [&](const std::string& path, ffriga::SidContent content) {
       ffriga::refuseInputAsOutput(output, restart ? "--restart" : "-o", path,
                                   "a SID file of the scene");
-      return loadSid(path);
+      return loadSid(path, content);
     };
     ffriga::installInterruptHandler();  // also while loading: a clean stop, exit code 1
     ffriga::RestartRecord record;

@@ -59,7 +59,7 @@ std::string sidFolder() {
 // directory (where the sid.* tests leave SID files of their own).
 Scene rodScene(const std::string& text) {
   return buildScene(parseYamlText(text, sidFolder() + "/inline.yaml"), {sidFolder()},
-                    [](const std::string& path) { return readSid(path); });
+                    [](const std::string& path, SidContent content) { return readSid(path, content); });
 }
 
 // Steel rod: E, rho, radius, length of configs/bodies/rod.yaml.

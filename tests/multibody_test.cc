@@ -16,7 +16,7 @@ namespace {
 
 Scene sceneFromText(const std::string& text) {
   return buildScene(parseYamlText(text, "inline.yaml"), {},
-                    [](const std::string& p) -> FlexibleBodySid {
+                    [](const std::string& p, SidContent) -> FlexibleBodySid {
                       throw InputError("no SID files in this test: " + p);
                     });
 }

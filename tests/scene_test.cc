@@ -98,7 +98,7 @@ FlexibleBodySid flexibleSphere2d(double R, int nq) {
 // resolved path to an in-memory SID.
 SidLoader fakeLoader(const FlexibleBodySid& sid) {
   for (const char* f : {"sphere_a.sid.h5", "sphere_b.sid.h5"}) std::ofstream(f) << "fake";
-  return [sid](const std::string&) { return sid; };
+  return [sid](const std::string&, SidContent) { return sid; };
 }
 
 const char* kScene = R"(name: rigid_spheres
@@ -446,16 +446,35 @@ TEST_CASE("scene: SID names resolve against the scene folder, then each --sid-pa
   // The scene "lives" in sid_path_test/, which holds neither file itself.
   const Scene scene = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
                                  {"sid_path_test/first", "sid_path_test/second"},
-                                 [&](const std::string&) { return sid; });
+                                 [&](const std::string&, SidContent) { return sid; });
   REQUIRE(scene.sid_files[0] == "sid_path_test/second/path_a.sid.h5");
   REQUIRE(scene.sid_files[1] == "sid_path_test/first/path_b.sid.h5");
   // A file next to the scene wins over the search path.
   std::ofstream("sid_path_test/path_a.sid.h5") << "fake";
   const Scene again = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
                                  {"sid_path_test/first", "sid_path_test/second"},
-                                 [&](const std::string&) { return sid; });
+                                 [&](const std::string&, SidContent) { return sid; });
   REQUIRE(again.sid_files[0] == "sid_path_test/path_a.sid.h5");
   std::filesystem::remove_all("sid_path_test");
+}
+
+TEST_CASE("scene: the SID loader skips the visualisation mesh unless frames are asked for",
+          "[scene]") {
+  const FlexibleBodySid sid = rigidSphere2d(0.01);
+  std::vector<SidContent> asked;
+  SidLoader recording = [&](const std::string& path, SidContent content) {
+    asked.push_back(content);
+    return fakeLoader(sid)(path, content);
+  };
+  buildScene(parseYamlText(kScene, "scene.yaml"), {}, recording);
+  REQUIRE(asked.size() == 2);  // sphere_a and sphere_b
+  CHECK(asked[0] == SidContent::kWithoutMesh);
+  asked.clear();
+  const std::string framed = std::string(kScene) + "outputs:\n  visualisation: {interval: 1.0e-6}\n";
+  // The test SID has no mesh, so the scene is refused, after the SIDs were read in full.
+  CHECK_THROWS_AS(buildScene(parseYamlText(framed, "scene.yaml"), {}, recording), InputError);
+  REQUIRE_FALSE(asked.empty());
+  for (SidContent c : asked) CHECK(c == SidContent::kAll);
 }
 
 TEST_CASE("scene: a visualisation request on a SID without a mesh is refused", "[scene]") {

@@ -131,6 +131,10 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
   }
   std::vector<std::shared_ptr<FlexibleBodySid>> sids;
   std::map<std::string, std::shared_ptr<FlexibleBodySid>> loaded;
+  // Only visualisation frames need the mesh's sampled modes.
+  const YAML::Node outputs = doc.root["outputs"];
+  const SidContent content = outputs && outputs["visualisation"] ? SidContent::kAll
+                                                                 : SidContent::kWithoutMesh;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const YAML::Node B = bodies[b];
     const std::string k = Str() << "bodies[" << b << "]";
@@ -158,7 +162,7 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
         sids.push_back(it->second);
         continue;
       }
-      auto sid = std::make_shared<FlexibleBodySid>(load_sid(files[b]));
+      auto sid = std::make_shared<FlexibleBodySid>(load_sid(files[b], content));
       if (frozen) {
         if (sid->model == "axisymmetric")
           throw InputError("an axisymmetric body cannot be frozen (it would lose its axis)");

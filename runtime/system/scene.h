@@ -28,6 +28,7 @@
 #include <Eigen/Dense>
 
 #include "common/sid.h"
+#include "common/sid_file.h"
 #include "common/yaml_input.h"
 #include "runtime/system/multibody_system.h"
 #include "runtime/system/simulation.h"
@@ -35,7 +36,9 @@
 
 namespace ffriga {
 
-using SidLoader = std::function<FlexibleBodySid(const std::string& path)>;
+// Reads the SID file at `path`; `content` is SidContent::kWithoutMesh when the scene draws
+// no visualisation frames (the loader may then skip the mesh's sampled modes).
+using SidLoader = std::function<FlexibleBodySid(const std::string& path, SidContent content)>;
 
 struct Scene {
   YamlDocument doc;
