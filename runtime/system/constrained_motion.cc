@@ -2,6 +2,7 @@
 // multipliers of the acceleration-level constraints and the projection onto the position
 // and velocity constraints (formulas in runtime/system/multibody_system.h).
 #include <cmath>
+#include <limits>
 
 #include "common/error.h"
 #include "runtime/bodies/marker_kinematics.h"
@@ -142,16 +143,23 @@ bool MultibodySystem::closeConstraints(double* y, bool rigidOnly) {
   Eigen::MatrixXd X;
   Eigen::LLT<Eigen::MatrixXd> S;
   Eigen::VectorXd dsp;
-  // |g| <= 1e-13 (m, or 1 for directions) is a few hundred ulps of the scenes' lengths,
-  // reached in 1-3 Newton steps.
-  constexpr double kTolerance = 1e-13;
+  // Newton to round-off: |g| <= 1e-15 (m, or 1 for directions; a few ulps of the scenes'
+  // lengths), or |g| <= 1e-13 and no longer falling (round-off of larger coordinates). A
+  // projection that stopped at 1e-13 moved the state by up to that much after every step:
+  // with tight tolerances (rtol 1e-11, a coordinate near zero) that exceeds the local error
+  // allowed, and CVODE's error test failed at any step size (a rigid pendulum near the top
+  // of its swing, built with -march=native). From a step's drift Newton takes 1-3 steps.
+  constexpr double kTolerance = 1e-13, kRoundOff = 1e-15;
   bool closed = false;
+  double previous = std::numeric_limits<double>::infinity();
   for (int iter = 0; iter < 8 && !closed; ++iter) {
     constraintRows(y, rows);
-    if (rows.g.lpNorm<Eigen::Infinity>() <= kTolerance) {
+    const double g = rows.g.lpNorm<Eigen::Infinity>();
+    if (g <= kRoundOff || (g <= kTolerance && g > 0.5 * previous)) {
       closed = true;
       break;
     }
+    previous = g;
     if (!projectionMobility(y, rows, rigidOnly, X, S)) return false;
     const Eigen::VectorXd dz = -X * S.solve(rows.g);
     for (int b = 0; b < numBodies(); ++b) {
