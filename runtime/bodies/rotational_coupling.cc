@@ -6,13 +6,21 @@
 
 namespace ffriga {
 
+namespace {
+constexpr int kLanes = 8;  // partial sums of a row's dot product (one AVX-512 vector)
+}  // namespace
+
 RotationalCoupling::RotationalCoupling(const FlexibleBodySid& sid, const std::string& body)
     : nq_(sid.nq()) {
   offset_.resize(nq_ + 1);
   offset_[0] = 0;
   for (int j = 0; j < nq_; ++j) offset_[j + 1] = offset_[j] + (nq_ - j - 1);
+  // Scale of the check: the largest entry, or the bound |Cr1_j(c, i)| <= sqrt(Me_jj Me_ii)
+  // (Cauchy-Schwarz; 1 for mass-normalised modes) if that is larger: a body whose Cr1 is
+  // round-off (e.g. modes along one line) must not be judged against its own noise.
   double largest = 0.0;
   for (int j = 0; j < nq_; ++j) largest = std::max(largest, sid.Cr1[j].cwiseAbs().maxCoeff());
+  if (sid.Me.rows() == nq_ && nq_ > 0) largest = std::max(largest, sid.Me.diagonal().maxCoeff());
   double worst = 0.0;
   int wj = 0, wi = 0, wc = 0;
   for (int c = 0; c < 3; ++c) {
@@ -46,13 +54,30 @@ void RotationalCoupling::apply(const Eigen::VectorXd& x,
                                Eigen::Matrix<double, Eigen::Dynamic, 3>& Z) const {
   Z.setZero(nq_, 3);
   for (int c = 0; c < 3; ++c) {
-    Eigen::Ref<Eigen::VectorXd> z = Z.col(c);
+    double* __restrict z = Z.col(c).data();
     for (int j = 0; j + 1 < nq_; ++j) {
-      const int len = nq_ - j - 1;
-      const Eigen::Map<const Eigen::VectorXd> g(row(c, j), len);
+      // One pass over row j of the triangle for both of its uses:
       // z_j += sum_{i > j} G(j, i) x_i;  z_i += G(i, j) x_j = -G(j, i) x_j.
-      z(j) += g.dot(x.segment(j + 1, len));
-      z.segment(j + 1, len) -= x(j) * g;
+      const int len = nq_ - j - 1;
+      const double* __restrict g = row(c, j);
+      const double* __restrict xs = x.data() + j + 1;
+      double* __restrict zs = z + j + 1;
+      const double xj = x(j);
+      double lane[kLanes] = {};  // kLanes partial sums: a fixed order, vectorisable
+      int i = 0;
+      for (; i + kLanes <= len; i += kLanes) {
+        for (int l = 0; l < kLanes; ++l) {
+          lane[l] += g[i + l] * xs[i + l];
+          zs[i + l] -= xj * g[i + l];
+        }
+      }
+      double sum = 0.0;
+      for (int l = 0; l < kLanes; ++l) sum += lane[l];
+      for (; i < len; ++i) {
+        sum += g[i] * xs[i];
+        zs[i] -= xj * g[i];
+      }
+      z[j] += sum;
     }
   }
 }
