@@ -55,7 +55,8 @@ struct ElasticSystem {
 ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
                                  const ElasticityModel& model);
 
-// y = A x for a symmetric matrix stored as its upper triangle.
+// y = A x for a symmetric matrix stored as its upper triangle; the columns of x in blocks
+// over the OpenMP threads.
 Eigen::MatrixXd symmetricProduct(const SparseMatrix& upper, const Eigen::MatrixXd& x);
 
 }  // namespace ffriga

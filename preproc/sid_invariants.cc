@@ -6,6 +6,7 @@
 #include "common/error.h"
 #include "common/gauss_legendre.h"
 #include "preproc/dense_products.h"
+#include "preproc/elasticity_assembly.h"
 
 namespace ffriga {
 
@@ -120,7 +121,7 @@ void computeElasticInvariants(const SparseMatrix& Ms, const Eigen::MatrixXd& X,
   }
   const auto full = Ms.selfadjointView<Eigen::Upper>();
   const Eigen::VectorXd m1 = full * Eigen::VectorXd::Ones(ncp);  // sum_a Ms_ab
-  const Eigen::MatrixXd MX = full * X;                           // ncp x s
+  const Eigen::MatrixXd MX = symmetricProduct(Ms, X);           // ncp x s
   // G(d, c) as nq-vectors: G_i(d, c) = int rho x_d Phi_ic.
   std::array<std::array<Eigen::VectorXd, 3>, 3> G;
   for (auto& row : G)
@@ -144,7 +145,7 @@ void computeElasticInvariants(const SparseMatrix& Ms, const Eigen::MatrixXd& X,
     sid->Cr0.col(2) = G[0][1] - G[1][0];
     // A_cd(j, i) = int rho Phi_jc Phi_id; Cr1_j(:, i) = int rho Phi_j x Phi_i.
     std::vector<Eigen::MatrixXd> MP(3);
-    for (int c = 0; c < 3; ++c) MP[c] = full * Pc[c];
+    for (int c = 0; c < 3; ++c) MP[c] = symmetricProduct(Ms, Pc[c]);
     const Eigen::MatrixXd A01 = transposeTimes(Pc[0], MP[1]);
     const Eigen::MatrixXd A02 = transposeTimes(Pc[0], MP[2]);
     const Eigen::MatrixXd A12 = transposeTimes(Pc[1], MP[2]);

@@ -1,5 +1,6 @@
 #include "preproc/sparse_cholesky.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include <cholmod.h>
@@ -118,27 +119,63 @@ double SparseCholesky::rcond() const {
   return factorized_ ? cholmod_rcond(factor_, common_) : 0.0;
 }
 
+namespace {
+
+// A CHOLMOD workspace for one solve call (the factor's own common object is not shared
+// between threads).
+class SolveWorkspace {
+ public:
+  SolveWorkspace() {
+    cholmod_start(&common_);
+    common_.print = 0;
+    common_.error_handler = errorHandler;
+  }
+  ~SolveWorkspace() { cholmod_finish(&common_); }
+  SolveWorkspace(const SolveWorkspace&) = delete;
+  SolveWorkspace& operator=(const SolveWorkspace&) = delete;
+  // X = A^{-1} B into x (rows x cols, column-major).
+  void solve(cholmod_factor* factor, const double* b, int rows, int cols, double* x) {
+    cholmod_dense B = denseView(b, rows, cols);
+    cholmod_dense* X = cholmod_solve(CHOLMOD_A, factor, &B, &common_);
+    if (!X) throw ComputeError("CHOLMOD solve failed: " + lastCholmodError);
+    std::memcpy(x, X->x, sizeof(double) * static_cast<std::size_t>(rows) * cols);
+    cholmod_free_dense(&X, &common_);
+  }
+
+ private:
+  cholmod_common common_;
+};
+
+constexpr int kSolveBlock = 64;  // columns per CHOLMOD call: bounds CHOLMOD's workspace
+
+}  // namespace
+
 void SparseCholesky::solve(const double* b, double* x) const {
   FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
-  cholmod_dense B = denseView(b, n_, 1);
-  cholmod_dense* X = cholmod_solve(CHOLMOD_A, factor_, &B, common_);
-  if (!X) throw ComputeError("CHOLMOD solve failed: " + lastCholmodError);
-  std::memcpy(x, X->x, sizeof(double) * n_);
-  cholmod_free_dense(&X, common_);
+  SolveWorkspace().solve(factor_, b, n_, 1, x);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
   FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
   FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
   Eigen::MatrixXd X(B.rows(), B.cols());
-  constexpr int kBlock = 64;  // columns per CHOLMOD call: bounds CHOLMOD's workspace
-  for (Eigen::Index j = 0; j < B.cols(); j += kBlock) {
-    const int nc = static_cast<int>(std::min<Eigen::Index>(kBlock, B.cols() - j));
-    cholmod_dense Bv = denseView(B.data() + j * B.rows(), n_, nc);
-    cholmod_dense* Xc = cholmod_solve(CHOLMOD_A, factor_, &Bv, common_);
-    if (!Xc) throw ComputeError("CHOLMOD solve failed: " + lastCholmodError);
-    std::memcpy(X.data() + j * B.rows(), Xc->x, sizeof(double) * n_ * nc);
-    cholmod_free_dense(&Xc, common_);
+  SolveWorkspace w;
+  for (Eigen::Index j = 0; j < B.cols(); j += kSolveBlock) {
+    const int nc = static_cast<int>(std::min<Eigen::Index>(kSolveBlock, B.cols() - j));
+    w.solve(factor_, B.data() + j * B.rows(), n_, nc, X.data() + j * B.rows());
+  }
+  return X;
+}
+
+Eigen::MatrixXd SparseCholesky::solve(const SparseMatrix& B) const {
+  FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
+  FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
+  Eigen::MatrixXd X(B.rows(), B.cols());
+  SolveWorkspace w;
+  for (Eigen::Index j = 0; j < B.cols(); j += kSolveBlock) {
+    const int nc = static_cast<int>(std::min<Eigen::Index>(kSolveBlock, B.cols() - j));
+    const Eigen::MatrixXd block = B.middleCols(j, nc);
+    w.solve(factor_, block.data(), n_, nc, X.data() + j * B.rows());
   }
   return X;
 }

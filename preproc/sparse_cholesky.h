@@ -40,10 +40,14 @@ class SparseCholesky {
   double factorNonzeros() const { return factor_nonzeros_; }
   double factorFlops() const { return factor_flops_; }
 
-  // X = A^{-1} B for any number of columns (solved in blocks to bound the workspace).
+  // X = A^{-1} B for any number of columns (solved in blocks to bound the workspace; a
+  // sparse B is made dense one block at a time).
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+  Eigen::MatrixXd solve(const SparseMatrix& B) const;
   // x = A^{-1} b for one vector of length size() (x may not alias b).
   void solve(const double* b, double* x) const;
+  // The solves only read the factor and each call has its own CHOLMOD workspace: several
+  // threads may solve with one factorisation at once.
 
  private:
   cholmod_common_struct* common_ = nullptr;
