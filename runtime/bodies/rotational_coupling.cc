@@ -7,7 +7,7 @@
 namespace ffriga {
 
 namespace {
-constexpr int kLanes = 8;  // partial sums of a row's dot product (one AVX-512 vector)
+constexpr int kLanes = 8;  // partial sums of a row's dot product (two AVX2 vectors)
 }  // namespace
 
 RotationalCoupling::RotationalCoupling(const FlexibleBodySid& sid, const std::string& body)
