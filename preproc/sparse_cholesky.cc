@@ -155,29 +155,34 @@ void SparseCholesky::solve(const double* b, double* x) const {
   SolveWorkspace().solve(factor_, b, n_, 1, x);
 }
 
-Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
-  FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
-  FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
-  Eigen::MatrixXd X(B.rows(), B.cols());
+namespace {
+
+// X = A^{-1} B in blocks of kSolveBlock columns, each copied into a dense block (B dense
+// or sparse).
+template <typename Rhs>
+Eigen::MatrixXd solveInBlocks(cholmod_factor* factor, int n, const Rhs& B) {
+  Eigen::MatrixXd X(B.rows(), B.cols()), block;
   SolveWorkspace w;
   for (Eigen::Index j = 0; j < B.cols(); j += kSolveBlock) {
     const int nc = static_cast<int>(std::min<Eigen::Index>(kSolveBlock, B.cols() - j));
-    w.solve(factor_, B.data() + j * B.rows(), n_, nc, X.data() + j * B.rows());
+    block = B.middleCols(j, nc);
+    w.solve(factor, block.data(), n, nc, X.data() + j * B.rows());
   }
   return X;
+}
+
+}  // namespace
+
+Eigen::MatrixXd SparseCholesky::solve(const Eigen::MatrixXd& B) const {
+  FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
+  FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
+  return solveInBlocks(factor_, n_, B);
 }
 
 Eigen::MatrixXd SparseCholesky::solve(const SparseMatrix& B) const {
   FFRIGA_CHECK(factorized_, "solve before a successful factorisation");
   FFRIGA_CHECK(B.rows() == n_, "right-hand side has " << B.rows() << " rows, expected " << n_);
-  Eigen::MatrixXd X(B.rows(), B.cols());
-  SolveWorkspace w;
-  for (Eigen::Index j = 0; j < B.cols(); j += kSolveBlock) {
-    const int nc = static_cast<int>(std::min<Eigen::Index>(kSolveBlock, B.cols() - j));
-    const Eigen::MatrixXd block = B.middleCols(j, nc);
-    w.solve(factor_, block.data(), n_, nc, X.data() + j * B.rows());
-  }
-  return X;
+  return solveInBlocks(factor_, n_, B);
 }
 
 }  // namespace ffriga
