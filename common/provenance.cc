@@ -3,8 +3,8 @@
 #include <hdf5.h>
 #include <omp.h>
 #include <openssl/crypto.h>
-#include <sundials/sundials_config.h>
 #include <suitesparse/SuiteSparse_config.h>
+#include <sundials/sundials_config.h>
 
 #include <Eigen/Core>
 
@@ -24,8 +24,8 @@ std::vector<std::pair<std::string, std::string>> dependencyVersions() {
   unsigned major = 0, minor = 0, release = 0;
   H5get_libversion(&major, &minor, &release);  // the library linked, not the header's
   return {
-      {"Eigen", Str() << EIGEN_WORLD_VERSION << "." << EIGEN_MAJOR_VERSION << "."
-                      << EIGEN_MINOR_VERSION},
+      {"Eigen",
+       Str() << EIGEN_WORLD_VERSION << "." << EIGEN_MAJOR_VERSION << "." << EIGEN_MINOR_VERSION},
       {"HDF5", Str() << major << "." << minor << "." << release},
       {"SUNDIALS", SUNDIALS_VERSION},
       {"SuiteSparse", Str() << SUITESPARSE_MAIN_VERSION << "." << SUITESPARSE_SUB_VERSION << "."

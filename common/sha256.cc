@@ -15,7 +15,9 @@ Sha256::Sha256() : context_(EVP_MD_CTX_new()) {
     throw ComputeError("SHA-256: OpenSSL could not start a digest");
 }
 
-Sha256::~Sha256() { EVP_MD_CTX_free(context_); }
+Sha256::~Sha256() {
+  EVP_MD_CTX_free(context_);
+}
 
 void Sha256::update(const void* data, std::size_t size) {
   if (size > 0 && EVP_DigestUpdate(context_, data, size) != 1)

@@ -121,7 +121,7 @@ void computeElasticInvariants(const SparseMatrix& Ms, const Eigen::MatrixXd& X,
   }
   const auto full = Ms.selfadjointView<Eigen::Upper>();
   const Eigen::VectorXd m1 = full * Eigen::VectorXd::Ones(ncp);  // sum_a Ms_ab
-  const Eigen::MatrixXd MX = symmetricProduct(Ms, X);           // ncp x s
+  const Eigen::MatrixXd MX = symmetricProduct(Ms, X);            // ncp x s
   // G(d, c) as nq-vectors: G_i(d, c) = int rho x_d Phi_ic.
   std::array<std::array<Eigen::VectorXd, 3>, 3> G;
   for (auto& row : G)

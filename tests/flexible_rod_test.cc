@@ -58,8 +58,9 @@ std::string sidFolder() {
 // The scene "lives" in the SID folder, so that SID names never resolve against the working
 // directory (where the sid.* tests leave SID files of their own).
 Scene rodScene(const std::string& text) {
-  return buildScene(parseYamlText(text, sidFolder() + "/inline.yaml"), {sidFolder()},
-                    [](const std::string& path, SidContent content) { return readSid(path, content); });
+  return buildScene(
+      parseYamlText(text, sidFolder() + "/inline.yaml"), {sidFolder()},
+      [](const std::string& path, SidContent content) { return readSid(path, content); });
 }
 
 // Steel rod: E, rho, radius, length of configs/bodies/rod.yaml.

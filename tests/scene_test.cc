@@ -470,7 +470,8 @@ TEST_CASE("scene: the SID loader skips the visualisation mesh unless frames are 
   REQUIRE(asked.size() == 2);  // sphere_a and sphere_b
   CHECK(asked[0] == SidContent::kWithoutMesh);
   asked.clear();
-  const std::string framed = std::string(kScene) + "outputs:\n  visualisation: {interval: 1.0e-6}\n";
+  const std::string framed =
+      std::string(kScene) + "outputs:\n  visualisation: {interval: 1.0e-6}\n";
   // The test SID has no mesh, so the scene is refused, after the SIDs were read in full.
   CHECK_THROWS_AS(buildScene(parseYamlText(framed, "scene.yaml"), {}, recording), InputError);
   REQUIRE_FALSE(asked.empty());

@@ -133,8 +133,8 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
   std::map<std::string, std::shared_ptr<FlexibleBodySid>> loaded;
   // Only visualisation frames need the mesh's sampled modes.
   const YAML::Node outputs = doc.root["outputs"];
-  const SidContent content = outputs && outputs["visualisation"] ? SidContent::kAll
-                                                                 : SidContent::kWithoutMesh;
+  const SidContent content =
+      outputs && outputs["visualisation"] ? SidContent::kAll : SidContent::kWithoutMesh;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const YAML::Node B = bodies[b];
     const std::string k = Str() << "bodies[" << b << "]";
