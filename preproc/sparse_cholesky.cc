@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 #include <cholmod.h>
 
@@ -51,6 +52,13 @@ void errorHandler(int status, const char* file, int line, const char* message) {
                            << ") at " << (file ? file : "?") << ":" << line;
 }
 
+// cholmod_start with CHOLMOD's printing silenced and its errors routed to errorHandler.
+void startQuietly(cholmod_common* common) {
+  cholmod_start(common);
+  common->print = 0;
+  common->error_handler = errorHandler;
+}
+
 SparseCholesky::Status translate(int status, std::string* message, const char* stage) {
   if (status == CHOLMOD_OK) return SparseCholesky::Status::kOk;
   if (message) *message = Str() << stage << ": " << lastCholmodError;
@@ -62,9 +70,7 @@ SparseCholesky::Status translate(int status, std::string* message, const char* s
 
 SparseCholesky::SparseCholesky() {
   common_ = new cholmod_common;
-  cholmod_start(common_);
-  common_->print = 0;  // silence
-  common_->error_handler = errorHandler;
+  startQuietly(common_);
   common_->final_ll = 1;
 }
 
@@ -125,11 +131,7 @@ namespace {
 // between threads).
 class SolveWorkspace {
  public:
-  SolveWorkspace() {
-    cholmod_start(&common_);
-    common_.print = 0;
-    common_.error_handler = errorHandler;
-  }
+  SolveWorkspace() { startQuietly(&common_); }
   ~SolveWorkspace() { cholmod_finish(&common_); }
   SolveWorkspace(const SolveWorkspace&) = delete;
   SolveWorkspace& operator=(const SolveWorkspace&) = delete;
@@ -157,16 +159,22 @@ void SparseCholesky::solve(const double* b, double* x) const {
 
 namespace {
 
-// X = A^{-1} B in blocks of kSolveBlock columns, each copied into a dense block (B dense
-// or sparse).
+// X = A^{-1} B in blocks of kSolveBlock columns: a dense B is read in place, a sparse one
+// made dense one block at a time.
 template <typename Rhs>
 Eigen::MatrixXd solveInBlocks(cholmod_factor* factor, int n, const Rhs& B) {
   Eigen::MatrixXd X(B.rows(), B.cols()), block;
   SolveWorkspace w;
   for (Eigen::Index j = 0; j < B.cols(); j += kSolveBlock) {
     const int nc = static_cast<int>(std::min<Eigen::Index>(kSolveBlock, B.cols() - j));
-    block = B.middleCols(j, nc);
-    w.solve(factor, block.data(), n, nc, X.data() + j * B.rows());
+    const double* b;
+    if constexpr (std::is_same_v<Rhs, Eigen::MatrixXd>) {
+      b = B.data() + j * B.rows();
+    } else {
+      block = B.middleCols(j, nc);
+      b = block.data();
+    }
+    w.solve(factor, b, n, nc, X.data() + j * B.rows());
   }
   return X;
 }

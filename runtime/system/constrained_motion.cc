@@ -148,7 +148,7 @@ bool MultibodySystem::closeConstraints(double* y, bool rigidOnly) {
   // projection that stopped at 1e-13 moved the state by up to that much after every step:
   // with tight tolerances (rtol 1e-11, a coordinate near zero) that exceeds the local error
   // allowed, and CVODE's error test failed at any step size (a rigid pendulum near the top
-  // of its swing, built with -march=native). From a step's drift Newton takes 1-3 steps.
+  // of its swing, in a build with other rounding). From a step's drift Newton takes 1-3 steps.
   constexpr double kTolerance = 1e-13, kRoundOff = 1e-15;
   bool closed = false;
   double previous = std::numeric_limits<double>::infinity();

@@ -105,7 +105,7 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
     // Or when Newton has reached the noise of its residual: corrections that stopped
     // shrinking (more than half the last one) below 1e-7 of the displacements. Seen: a soft
     // contact (1e15 N/m^3, 40 active points) whose corrections hovered at 1.2e-9 .. 8e-9 of
-    // the displacements for 6 iterations, in a build with other rounding (-march=native).
+    // the displacements for 6 iterations, in a build with other rounding.
     // The offset left is far below atol_position (1e-7 x ~1e-6 m = 1e-13 m).
     if (it >= 2 && change <= 1e-7 * size && change > 0.5 * previous) return true;
     previous = change;
