@@ -9,50 +9,19 @@ import os
 import sys
 
 import h5py
-import numpy as np
 
 from result_checks import Checks
+from same_bits import differences
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
 check = Checks()
 
-# Attributes that are measurements of the machine, not results.
-TIMING = ("wall_time_s", "cpu_time_s", "preprocessing_time_s", "peak_memory")  # and stage times
-
-
-# Attributes that describe the run, not its results: the thread count (provenance) and the
-# name of the XDMF file beside the result (named after the result file).
-RUN = ("threads", "xdmf")
-
-
-def is_timing(path, name):
-    return (any(t in name for t in TIMING) or name.endswith("_wall_s") or "stage_times" in path
-            or name in RUN)
-
-
-def contents(path):
-    """Every dataset's bytes and every non-timing attribute, by HDF5 path."""
-    items = {}
-    with h5py.File(path, "r") as f:
-        def visit(name, obj):
-            for k, v in obj.attrs.items():
-                if not is_timing(name, k):
-                    items[f"{name}@{k}"] = np.asarray(v).tobytes()
-            if isinstance(obj, h5py.Dataset):
-                items[name] = (obj.dtype.str, obj.shape, np.asarray(obj[()]).tobytes())
-        visit("/", f)
-        f.visititems(visit)
-    return items
-
 
 def same_bits(a, b, what, ignore=()):
-    ca, cb = contents(a), contents(b)
-    for k in ignore:
-        ca.pop(k, None), cb.pop(k, None)
-    differ = sorted(k for k in set(ca) | set(cb) if ca.get(k) != cb.get(k))
-    check(not differ and len(ca) > 0,
-          f"{what}: {len(ca)} datasets and attributes equal bit for bit"
+    n, differ = differences(a, b, ignore)
+    check(not differ and n > 0,
+          f"{what}: {n} datasets and attributes equal bit for bit"
           + (f"; differ: {', '.join(differ[:8])}" if differ else ""))
 
 
