@@ -1,5 +1,5 @@
 // Size and cost of the Cholesky factor of K_ii (the fixed-interface stiffness that the
-// Craig-Bampton reduction factorises, preproc/craig_bampton.h) under CHOLMOD's fill-reducing
+// Craig-Bampton reduction factorises, preproc/reduction/craig_bampton.h) under CHOLMOD's fill-reducing
 // orderings: what one sparse factorisation of a body needs before any solve (issue 10: the
 // global reference sphere3d_g5, 161,631 DOFs).
 //
@@ -19,11 +19,11 @@
 
 #include <cholmod.h>
 
-#include "common/error.h"
-#include "preproc/body_config.h"
-#include "preproc/contact_region.h"
-#include "preproc/dof_map.h"
-#include "preproc/elasticity_assembly.h"
+#include "common/base/error.h"
+#include "preproc/input/body_config.h"
+#include "preproc/geometry/contact_region.h"
+#include "preproc/assembly/dof_map.h"
+#include "preproc/assembly/elasticity_assembly.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "preproc/body_config.h"
+#include "preproc/input/body_config.h"
 
 namespace {
 

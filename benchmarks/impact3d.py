@@ -6,7 +6,7 @@ global reference's igaprep needs about 17 GB).
 * Table 2 with Fig. 13: ndof, nq and interface points next to the paper's, the force peak
   and contact duration against Hertz, the preprocessing (igaprep) and integration (ffrsim)
   wall and CPU times and peak memory, and the hierarchical/global ratios. The references
-  g3, g4 and g5 are one space (their body files; tests/body_hierarchy_test.cc), built once.
+  g3, g4 and g5 are one space (their body files; tests/preproc/input/body_hierarchy_test.cc), built once.
 * The 2D axisymmetric models of Sect. 5 beside them (study table1_models, seconds): the
   3D force peak and duration against the 2D ones of the same nlvl (--no-2d skips it).
 * --rhs-cost: the right-hand-side cost against nq on the reference's SID, the largest

@@ -7,7 +7,7 @@ fixed-interface normal modes (body file reduction.normal_modes) and each treatme
 high modes, it builds the SID with igaprep, runs configs/scenes/impact2d_<model>.yaml with
 the body entries' `quasi_static` key set, and prints, from the result file:
 
-  force peak (root attribute max_contact_force_N) against Hertz (common/hertz.h, 146.013 N)
+  force peak (root attribute max_contact_force_N) against Hertz (common/mechanics/hertz.h, 146.013 N)
   and against the elastodynamic reference 146.7-147.0 N (an independent full FE solution:
   axisymmetric, quadratic elements, converged; implicit time integration; issue 11),
   contact duration (contact_end_s - contact_begin_s) against 82.66 us,
@@ -36,7 +36,7 @@ import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-HERTZ_N = 146.013          # common/hertz.h for this impact (printed by ffrsim)
+HERTZ_N = 146.013          # common/mechanics/hertz.h for this impact (printed by ffrsim)
 ELASTODYNAMIC_N = (146.7, 147.0)
 ELASTODYNAMIC_US = 82.66
 

@@ -27,10 +27,10 @@
 #include <string>
 #include <vector>
 
-#include "common/sid_file.h"
+#include "common/sid/sid_file.h"
 #include "runtime/bodies/floating_body.h"
 #include "runtime/contact/contact_pair.h"
-#include "common/hertz.h"
+#include "common/mechanics/hertz.h"
 #include "runtime/system/multibody_system.h"
 
 namespace {

@@ -4,19 +4,19 @@
 #include <cmath>
 #include <set>
 
-#include "common/contact_surface.h"
-#include "common/error.h"
-#include "common/version.h"
-#include "preproc/contact_region.h"
-#include "preproc/craig_bampton.h"
-#include "preproc/dof_map.h"
-#include "preproc/elasticity_assembly.h"
-#include "preproc/marker_points.h"
-#include "preproc/rigid_body_modes.h"
-#include "preproc/sid_invariants.h"
-#include "preproc/single_threaded_blas.h"
-#include "preproc/stress_modes.h"
-#include "preproc/visualisation_mesh.h"
+#include "common/splines/contact_surface.h"
+#include "common/base/error.h"
+#include "common/base/version.h"
+#include "preproc/geometry/contact_region.h"
+#include "preproc/reduction/craig_bampton.h"
+#include "preproc/assembly/dof_map.h"
+#include "preproc/assembly/elasticity_assembly.h"
+#include "preproc/reduction/marker_points.h"
+#include "preproc/assembly/rigid_body_modes.h"
+#include "preproc/reduction/sid_invariants.h"
+#include "preproc/solvers/single_threaded_blas.h"
+#include "preproc/assembly/stress_modes.h"
+#include "preproc/assembly/visualisation_mesh.h"
 
 namespace ffriga {
 

@@ -1,4 +1,4 @@
-// igaprep's pipeline from a checked body file to the reduced flexible body (common/sid.h):
+// igaprep's pipeline from a checked body file to the reduced flexible body (common/sid/sid.h):
 //
 //   geometry   exact patch, degree elevation, knot insertion          (body_config)
 //   assembly   K, M, Ms on the spline space                           (elasticity_assembly)
@@ -13,8 +13,8 @@
 #include <functional>
 #include <string>
 
-#include "common/sid.h"
-#include "preproc/body_config.h"
+#include "common/sid/sid.h"
+#include "preproc/input/body_config.h"
 
 namespace ffriga {
 

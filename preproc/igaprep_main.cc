@@ -6,7 +6,7 @@
 //
 // Pipeline (preproc/body_reduction.h): geometry and global refinement, elasticity
 // assembly, Craig-Bampton or modal reduction in a Buckens or tangent frame, SID invariants,
-// contact surface and markers, then the SID file (common/sid_file.h), written atomically.
+// contact surface and markers, then the SID file (common/sid/sid_file.h), written atomically.
 //
 // Without -o: the geometry summary: degrees, elements and control points per direction,
 // per hierarchy level the elements and active functions, and the displacement DOFs
@@ -20,14 +20,14 @@
 #include <cstdio>
 #include <iostream>
 
-#include "common/cli.h"
-#include "common/output_path.h"
-#include "common/provenance.h"
-#include "common/sid_file.h"
-#include "common/version.h"
-#include "preproc/body_config.h"
+#include "common/base/cli.h"
+#include "common/base/output_path.h"
+#include "common/base/provenance.h"
+#include "common/sid/sid_file.h"
+#include "common/base/version.h"
+#include "preproc/input/body_config.h"
 #include "preproc/body_reduction.h"
-#include "preproc/size_estimate.h"
+#include "preproc/input/size_estimate.h"
 
 namespace {
 

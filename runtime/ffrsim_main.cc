@@ -15,20 +15,20 @@
 #include <map>
 #include <iostream>
 
-#include "common/cli.h"
-#include "common/output_path.h"
-#include "common/provenance.h"
-#include "common/sha256.h"
-#include "common/yaml_overrides.h"
-#include "common/version.h"
-#include "runtime/contact/hertz_reference.h"
+#include "common/base/cli.h"
+#include "common/base/output_path.h"
+#include "common/base/provenance.h"
+#include "common/base/sha256.h"
+#include "common/input/yaml_overrides.h"
+#include "common/base/version.h"
+#include "runtime/report/hertz_reference.h"
 #include "runtime/output/restart_record.h"
 #include "runtime/output/result_writer.h"
-#include "runtime/system/scene.h"
-#include "runtime/system/simulation.h"
+#include "runtime/scene/scene.h"
+#include "runtime/simulation/simulation.h"
 
-#if __has_include("common/sid_file.h")
-#include "common/sid_file.h"
+#if __has_include("common/sid/sid_file.h")
+#include "common/sid/sid_file.h"
 #define FFRIGA_HAVE_SID_FILE 1
 #endif
 
@@ -65,13 +65,13 @@ the result file (flushed at least every outputs.flush_interval seconds, default 
 Exit codes: 0 success, 2 bad input or usage, 1 failure while computing (or interrupted).
 )";
 
-// The SID reader: common/sid_file.h (issue 4) when this source tree has it.
+// The SID reader: common/sid/sid_file.h (issue 4) when this source tree has it.
 ffriga::FlexibleBodySid loadSid(const std::string& path, ffriga::SidContent content) {
 #ifdef FFRIGA_HAVE_SID_FILE
   return ffriga::readSid(path, content);
 #else
   throw ffriga::InputError(ffriga::Str() << path << ": this build of ffrsim cannot read SID files "
-                                         << "(common/sid_file.h is missing from the source tree)");
+                                         << "(common/sid/sid_file.h is missing from the source tree)");
 #endif
 }
 

@@ -1,6 +1,6 @@
 #include "runtime/bodies/body_marker.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 

@@ -4,9 +4,9 @@
 //   position (body frame)    p(q) = x0 + Phi q                      (Phi: 3 x nq, m per unit q)
 //   rotation of the material theta(q) = Psi q,  Psi = 1/2 curl Phi   (3 x nq, rad per unit q)
 // A vector u0 attached to the material at the marker (a joint axis) becomes, to first order
-// in q like the SID's invariants (common/sid.h), u(q) = u0 + (Psi q) x u0.
+// in q like the SID's invariants (common/sid/sid.h), u(q) = u0 + (Psi q) x u0.
 //
-// Markers of a SID body come from the SID (common/sid.h Marker: Phi from the basis values
+// Markers of a SID body come from the SID (common/sid/sid.h Marker: Phi from the basis values
 // and the control points' modes); a rigid or frozen body's markers are fixed points (Phi,
 // Psi with no columns). The ground's "marker" is a fixed inertial point.
 #pragma once
@@ -15,7 +15,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid.h"
+#include "common/sid/sid.h"
 
 namespace ffriga {
 

@@ -1,6 +1,6 @@
 #include "runtime/bodies/body_model.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 

@@ -22,7 +22,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid.h"
+#include "common/sid/sid.h"
 #include "runtime/bodies/quasi_static_modes.h"
 
 namespace ffriga {

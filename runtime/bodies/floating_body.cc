@@ -5,7 +5,7 @@
 #include <map>
 #include <mutex>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/bodies/rotation.h"
 
 namespace ffriga {
@@ -104,7 +104,7 @@ void FloatingBody3d::checkCentrifugalInvariants() const {
   if (worst > 1e-8 * scale) {
     throw InputError(Str() << "body '" << name_ << "': SID invariants Oe and J1 disagree (|Oe w6 + "
                            << "1/2 w^T J1 w| = " << worst << " against " << scale
-                           << "); see common/sid.h for their definitions");
+                           << "); see common/sid/sid.h for their definitions");
   }
 }
 

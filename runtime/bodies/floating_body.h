@@ -1,5 +1,5 @@
 // Flexible body in 3D in the floating frame of reference: paper Eq. (1) with the SID
-// invariants of common/sid.h (first order in q, Wallrapp's SID).
+// invariants of common/sid/sid.h (first order in q, Wallrapp's SID).
 //
 // Body-frame velocity of a material point x = x0 + Phi q:  v + w x x + Phi qdot, so with
 // z = [v, w, qdot] the kinetic energy is T = 1/2 z^T M(q) z with (Eq. 1)

@@ -17,7 +17,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid.h"
+#include "common/sid/sid.h"
 
 namespace ffriga {
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 
@@ -41,7 +41,7 @@ RotationalCoupling::RotationalCoupling(const FlexibleBodySid& sid, const std::st
     throw InputError(Str() << "body '" << body << "': SID invariant Cr1 is not antisymmetric: "
                            << "Cr1_" << wj << "(" << wc << ", " << wi << ") + Cr1_" << wi << "("
                            << wc << ", " << wj << ") = " << worst << " against its largest entry "
-                           << largest << " (Cr1_j(:, i) = int rho Phi_j~ Phi_i dV, common/sid.h)");
+                           << largest << " (Cr1_j(:, i) = int rho Phi_j~ Phi_i dV, common/sid/sid.h)");
   }
 }
 

@@ -1,4 +1,4 @@
-// The first-order rotational coupling of a flexible 3D body, Cr1 of common/sid.h, as three
+// The first-order rotational coupling of a flexible 3D body, Cr1 of common/sid/sid.h, as three
 // antisymmetric matrices: with G_c(j, i) = Cr1_j(c, i) = int rho (Phi_j x Phi_i)_c dV,
 //
 //   G_c^T = -G_c        (the cross product is antisymmetric),
@@ -26,7 +26,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid.h"
+#include "common/sid/sid.h"
 
 namespace ffriga {
 

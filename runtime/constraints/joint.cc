@@ -1,6 +1,6 @@
 #include "runtime/constraints/joint.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/bodies/marker_kinematics.h"
 #include "runtime/bodies/rotation.h"
 

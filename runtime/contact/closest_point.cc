@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "common/rational_basis.h"
+#include "common/splines/rational_basis.h"
 
 namespace ffriga {
 

@@ -14,7 +14,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/extracted_surface.h"
+#include "common/splines/extracted_surface.h"
 
 namespace ffriga {
 

@@ -38,7 +38,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/extracted_surface.h"
+#include "common/splines/extracted_surface.h"
 #include "runtime/bodies/body_model.h"
 #include "runtime/contact/closest_point.h"
 

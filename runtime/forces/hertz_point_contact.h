@@ -1,11 +1,11 @@
 // Hertz's contact law between two rigid spheres whose centres are the two markers
 // (runtime/forces/line_force.h), the rigid-body reference of paper Sect. 7 (Fig. 17):
 //   delta = R_a + R_b - l  (approach),   F = K delta^(3/2) for delta > 0, else 0,
-//   K = 4/3 E* sqrt(R*)    (common/hertz.h),   energy 2/5 K delta^(5/2),
+//   K = 4/3 E* sqrt(R*)    (common/mechanics/hertz.h),   energy 2/5 K delta^(5/2),
 // pushing the spheres apart (tension -F). Radii in m, K in N/m^(3/2).
 #pragma once
 
-#include "common/hertz.h"
+#include "common/mechanics/hertz.h"
 #include "runtime/forces/line_force.h"
 
 namespace ffriga {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/bodies/marker_kinematics.h"
 
 namespace ffriga {

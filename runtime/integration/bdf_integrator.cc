@@ -13,7 +13,7 @@
 #include <sunlinsol/sunlinsol_dense.h>
 #include <sunmatrix/sunmatrix_dense.h>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/integration/eigen_dense_solver.h"
 #include "runtime/integration/structured_solver.h"
 

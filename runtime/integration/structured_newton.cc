@@ -1,6 +1,6 @@
 #include "runtime/integration/structured_newton.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 

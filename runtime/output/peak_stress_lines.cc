@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "common/error.h"
-#include "common/von_mises.h"
+#include "common/base/error.h"
+#include "common/mechanics/von_mises.h"
 
 namespace ffriga {
 

@@ -1,6 +1,6 @@
 // The stresses along the bodies' stress lines (SID /stress_lines, e.g. the symmetry axis
 // under the contact point) at the time of the maximum contact force, with Hertz's field
-// (common/hertz.h hertzAxisStress, Johnson eq. 3.72) where the body is a Hertz sphere of a
+// (common/mechanics/hertz.h hertzAxisStress, Johnson eq. 3.72) where the body is a Hertz sphere of a
 // contact pair and the line starts on its surface and points at its centre. Recovered from
 // the reduced model as sigma = S q (S: the SID's stress modes), so exact for it. Written to
 // the result file as /stress_lines/<body>/<line> (schemas/result_format.md) whenever a
@@ -13,8 +13,8 @@
 
 #include <Eigen/Dense>
 
-#include "common/hdf5_io.h"
-#include "common/hertz.h"
+#include "common/sid/hdf5_io.h"
+#include "common/mechanics/hertz.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {

@@ -2,9 +2,9 @@
 
 #include <sstream>
 
-#include "common/error.h"
-#include "common/hdf5_io.h"
-#include "common/yaml_overrides.h"
+#include "common/base/error.h"
+#include "common/sid/hdf5_io.h"
+#include "common/input/yaml_overrides.h"
 #include "runtime/output/result_writer.h"
 
 namespace ffriga {

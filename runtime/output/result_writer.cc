@@ -1,6 +1,6 @@
 #include "runtime/output/result_writer.h"
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/bodies/axisymmetric_body.h"
 
 namespace ffriga {
@@ -8,7 +8,7 @@ namespace ffriga {
 using h5::Handle;
 
 namespace {
-// Checked HDF5 call of the result file (common/hdf5_io.h: ComputeError naming the file).
+// Checked HDF5 call of the result file (common/sid/hdf5_io.h: ComputeError naming the file).
 hid_t check(hid_t status, const std::string& what, const std::string& file) {
   return h5::Context{file}.check(status, what);
 }

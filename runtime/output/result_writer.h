@@ -18,7 +18,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/hdf5_io.h"
+#include "common/sid/hdf5_io.h"
 #include "runtime/output/peak_stress_lines.h"
 #include "runtime/output/restart_record.h"
 #include "runtime/output/visualisation_frames.h"

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "common/error.h"
-#include "common/von_mises.h"
+#include "common/base/error.h"
+#include "common/mechanics/von_mises.h"
 #include "runtime/output/xdmf_file.h"
 
 namespace ffriga {

@@ -1,6 +1,6 @@
 // Visualisation frames of a run (scene key outputs.visualisation): at every multiple of
 // `interval` (at the first output row at or after it), every flexible body whose SID has a
-// visualisation mesh (common/sid.h VisualisationMesh) is written to the result file as
+// visualisation mesh (common/sid/sid.h VisualisationMesh) is written to the result file as
 //
 //   /visualisation/time                  [frames]              s
 //   /visualisation/<body>/cells          [cells, 4 | 8]        point numbers (VTK order)
@@ -27,7 +27,7 @@
 
 #include <Eigen/Dense>
 
-#include "common/hdf5_io.h"
+#include "common/sid/hdf5_io.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {

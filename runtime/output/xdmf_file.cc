@@ -6,7 +6,7 @@
 
 #include <unistd.h>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 

@@ -15,7 +15,7 @@
 // The projection removes that offset; it costs one or two contact evaluations per step.
 #include <cmath>
 
-#include "common/error.h"
+#include "common/base/error.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {

@@ -4,7 +4,7 @@
 #include <limits>
 #include <vector>
 
-#include "common/error.h"
+#include "common/base/error.h"
 
 namespace ffriga {
 

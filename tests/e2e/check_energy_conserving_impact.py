@@ -12,7 +12,7 @@ Bounds (the issue's acceptance):
   * impulse (trapezoidal integral of the contact-force rows, every 0.1 us) within 0.2 % of
     2 m* v = m v_rel for two equal spheres; the rows' quadrature error is ~1e-6 here;
   * force peak (root attribute max_contact_force_N) within 0.3 % of 146.7-147.0 N and
-    within 1 % of Hertz's (common/hertz.h, 146.013 N);
+    within 1 % of Hertz's (common/mechanics/hertz.h, 146.013 N);
   * contact duration (contact_end_s - contact_begin_s, each the midpoint of the step where
     the contact began or ended: within one step, < 0.1 us) within 0.3 % of 82.66 us;
   * total energy (kinetic + elastic + penalty) constant to 1e-4 of the initial kinetic

@@ -48,7 +48,7 @@ with h5py.File(out, "r") as f:
     i = int(np.searchsorted(t, begin)) - 1  # last row before the impact
     v = float(f["sensors/sphere_left_centre/velocity"][i, 0] -
               f["sensors/sphere_right_centre/velocity"][i, 0])
-    # Hertz (common/hertz.h) for two free steel spheres R = 1 cm at approach speed v.
+    # Hertz (common/mechanics/hertz.h) for two free steel spheres R = 1 cm at approach speed v.
     E, nu, R, rho = 2.11e11, 0.3, 0.01, 7850.0
     Estar = 1.0 / (2.0 * (1.0 - nu * nu) / E)
     K = 4.0 / 3.0 * Estar * np.sqrt(R / 2.0)

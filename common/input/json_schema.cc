@@ -1,0 +1,381 @@
+#include "common/input/json_schema.h"
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+namespace ffriga {
+
+namespace {
+
+const std::set<std::string> kKeywords = {"type",
+                                         "properties",
+                                         "required",
+                                         "additionalProperties",
+                                         "items",
+                                         "minItems",
+                                         "maxItems",
+                                         "minimum",
+                                         "maximum",
+                                         "exclusiveMinimum",
+                                         "exclusiveMaximum",
+                                         "enum",
+                                         "const",
+                                         "$ref",
+                                         "oneOf",
+                                         "title",
+                                         "description",
+                                         "default",
+                                         "examples",
+                                         "$schema",
+                                         "$id",
+                                         "$comment",
+                                         "x-unit",
+                                         "$defs",
+                                         "definitions"};
+
+bool isQuoted(const YAML::Node& n) {
+  return n.Tag() == "!";
+}
+
+bool isNumber(const YAML::Node& n, double* value = nullptr) {
+  if (!n.IsScalar() || isQuoted(n)) return false;
+  double v;
+  if (!YAML::convert<double>::decode(n, v)) return false;
+  // yaml-cpp decodes ".inf" and ".nan"; they are not valid physical input.
+  if (!std::isfinite(v)) return false;
+  if (value) *value = v;
+  return true;
+}
+
+bool isInteger(const YAML::Node& n) {
+  if (!n.IsScalar() || isQuoted(n)) return false;
+  long long v;
+  return YAML::convert<long long>::decode(n, v);
+}
+
+bool isBoolean(const YAML::Node& n) {
+  if (!n.IsScalar() || isQuoted(n)) return false;
+  bool v;
+  return YAML::convert<bool>::decode(n, v);
+}
+
+bool hasType(const YAML::Node& n, const std::string& type) {
+  if (type == "object") return n.IsMap();
+  if (type == "array") return n.IsSequence();
+  if (type == "null") return n.IsNull();
+  if (type == "number") return isNumber(n);
+  if (type == "integer") return isInteger(n);
+  if (type == "boolean") return isBoolean(n);
+  if (type == "string") return n.IsScalar() && !isNumber(n) && !isBoolean(n);
+  return false;
+}
+
+std::string article(const std::string& type) {
+  if (type == "object") return "a mapping";
+  if (type == "array") return "a list";
+  if (type == "integer") return "an integer";
+  if (type == "null") return "nothing";
+  return "a " + type;
+}
+
+std::string join(const std::string& key, const std::string& child) {
+  return key.empty() ? child : key + "." + child;
+}
+
+// Levenshtein distance, for "did you mean" suggestions.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] != b[j - 1])});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// JSON equality, for enum and const (2020-12 Core Sect. 4.2.2): null equals null, numbers
+// compare by value (1 == 1.0) and never equal a string ("1" != 1), lists item by item,
+// mappings key by key in any order.
+bool sameValue(const YAML::Node& a, const YAML::Node& b) {
+  if (a.Type() != b.Type()) return false;
+  if (a.IsNull()) return true;
+  if (a.IsScalar()) {
+    double x, y;
+    const bool na = isNumber(a, &x), nb = isNumber(b, &y);
+    if (na || nb) return na && nb && x == y;
+    return a.Scalar() == b.Scalar();
+  }
+  if (a.size() != b.size()) return false;
+  if (a.IsSequence()) {
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (!sameValue(a[i], b[i])) return false;
+    return true;
+  }
+  for (const auto& kv : a) {
+    const YAML::Node other = b[kv.first.Scalar()];
+    if (!other || !sameValue(kv.second, other)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+JsonSchema::JsonSchema(const std::string& text, const std::string& name) : name_(name) {
+  try {
+    root_ = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(Str() << "schema " << name << " is not valid JSON: " << e.msg);
+  }
+  checkKeywords(root_, "#");
+}
+
+void JsonSchema::checkKeywords(const YAML::Node& schema, const std::string& where) const {
+  if (!schema.IsMap()) return;
+  for (const auto& kv : schema) {
+    const std::string k = kv.first.Scalar();
+    if (!kKeywords.count(k)) {
+      throw std::invalid_argument(Str() << "schema " << name_ << " uses the unsupported keyword '"
+                                        << k << "' at " << where);
+    }
+    if (k == "properties" || k == "$defs" || k == "definitions") {
+      for (const auto& p : kv.second) checkKeywords(p.second, where + "/" + p.first.Scalar());
+    } else if (k == "items" || k == "additionalProperties") {
+      checkKeywords(kv.second, where + "/" + k);
+    } else if (k == "oneOf") {
+      for (const auto& s : kv.second) checkKeywords(s, where + "/oneOf");
+    }
+  }
+}
+
+YAML::Node JsonSchema::resolve(const YAML::Node& schema) const {
+  YAML::Node s;
+  s.reset(schema);
+  for (int depth = 0; s.IsMap() && s["$ref"]; ++depth) {
+    const std::string ref = s["$ref"].Scalar();
+    std::string name;
+    YAML::Node defs;
+    if (ref.rfind("#/$defs/", 0) == 0) {
+      name = ref.substr(8);
+      defs.reset(root_["$defs"]);
+    } else if (ref.rfind("#/definitions/", 0) == 0) {
+      name = ref.substr(14);
+      defs.reset(root_["definitions"]);
+    }
+    const YAML::Node& cdefs = defs;
+    if (name.empty() || !cdefs || !cdefs[name] || depth > 32) {
+      throw std::invalid_argument(Str() << "schema " << name_ << ": cannot resolve $ref " << ref);
+    }
+    s.reset(cdefs[name]);
+  }
+  return s;
+}
+
+void JsonSchema::validate(const YamlDocument& doc) const {
+  check(doc, root_, doc.root, doc.root, "");
+}
+
+void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, const YAML::Node& node,
+                       const YAML::Node& parent, const std::string& key) const {
+  const YAML::Node schema = resolve(schemaIn);
+  const YAML::Node& where = node.IsDefined() ? node : parent;
+  if (!schema.IsMap()) {  // boolean schema: `true` accepts anything, `false` nothing
+    bool accept = true;
+    if (schema.IsScalar() && YAML::convert<bool>::decode(schema, accept) && !accept) {
+      throw inputError(doc, where, key,
+                       Str() << "no value allowed here, found " << describeNode(node));
+    }
+    return;
+  }
+
+  if (const YAML::Node t = schema["type"]) {
+    std::vector<std::string> types;
+    if (t.IsSequence()) {
+      for (const auto& x : t) types.push_back(x.Scalar());
+    } else {
+      types.push_back(t.Scalar());
+    }
+    bool ok = false;
+    for (const auto& ty : types) ok = ok || hasType(node, ty);
+    if (!ok) {
+      Str expected;
+      for (std::size_t i = 0; i < types.size(); ++i) {
+        expected << (i ? " or " : "") << article(types[i]);
+      }
+      throw inputError(doc, where, key,
+                       Str() << "expected " << expected.str() << ", found " << describeNode(node));
+    }
+  }
+
+  if (const YAML::Node c = schema["const"]) {
+    if (!sameValue(c, node)) {
+      throw inputError(doc, where, key,
+                       Str() << "expected " << c.Scalar() << ", found " << describeNode(node));
+    }
+  }
+  if (const YAML::Node e = schema["enum"]) {
+    bool ok = false;
+    Str allowed;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      ok = ok || sameValue(e[i], node);
+      allowed << (i ? ", " : "") << e[i].Scalar();
+    }
+    if (!ok) {
+      throw inputError(
+          doc, where, key,
+          Str() << "expected one of " << allowed.str() << "; found " << describeNode(node));
+    }
+  }
+
+  double value;
+  if (isNumber(node, &value)) {
+    const std::string unit = schema["x-unit"] ? " " + schema["x-unit"].Scalar() : "";
+    auto bound = [&](const char* kw, bool violated, const char* rule) {
+      if (schema[kw] && violated) {
+        throw inputError(doc, where, key,
+                         Str() << "expected a number " << rule << " " << schema[kw].Scalar() << unit
+                               << ", found " << node.Scalar());
+      }
+    };
+    bound("minimum", schema["minimum"] && value < schema["minimum"].as<double>(), ">=");
+    bound("maximum", schema["maximum"] && value > schema["maximum"].as<double>(), "<=");
+    bound("exclusiveMinimum",
+          schema["exclusiveMinimum"] && value <= schema["exclusiveMinimum"].as<double>(), ">");
+    bound("exclusiveMaximum",
+          schema["exclusiveMaximum"] && value >= schema["exclusiveMaximum"].as<double>(), "<");
+  }
+
+  if (node.IsSequence()) {
+    const int n = static_cast<int>(node.size());
+    auto count = [](int k) -> std::string { return Str() << k << (k == 1 ? " item" : " items"); };
+    if (schema["minItems"] && n < schema["minItems"].as<int>()) {
+      throw inputError(doc, where, key,
+                       Str() << "expected at least " << count(schema["minItems"].as<int>())
+                             << ", found " << n);
+    }
+    if (schema["maxItems"] && n > schema["maxItems"].as<int>()) {
+      throw inputError(doc, where, key,
+                       Str() << "expected at most " << count(schema["maxItems"].as<int>())
+                             << ", found " << n);
+    }
+    if (const YAML::Node items = schema["items"]) {
+      for (int i = 0; i < n; ++i) {
+        check(doc, items, node[i], node, Str() << key << "[" << i << "]");
+      }
+    }
+  }
+
+  if (node.IsMap()) {
+    const YAML::Node props = schema["properties"];
+    const YAML::Node additional = schema["additionalProperties"];
+    // Unknown keys first: a misspelt key also explains a "missing" required one.
+    for (const auto& kv : node) {
+      const std::string k = kv.first.Scalar();
+      const std::string childKey = join(key, k);
+      if (props && props[k]) continue;
+      if (additional && additional.IsScalar() && !additional.as<bool>()) {
+        Str allowed;
+        std::string closest;
+        std::size_t best = 3;  // suggest only names at most 2 edits away
+        bool first = true;
+        if (props) {
+          for (const auto& p : props) {
+            const std::string name = p.first.Scalar();
+            allowed << (first ? "" : ", ") << name;
+            first = false;
+            const std::size_t dist = editDistance(k, name);
+            if (dist < best) best = dist, closest = name;
+          }
+        }
+        Str msg;
+        msg << "unknown key";
+        if (!closest.empty()) msg << " (did you mean '" << closest << "'?)";
+        msg << "; expected one of: " << allowed.str();
+        throw inputError(doc, kv.first, childKey, msg);
+      } else if (additional && additional.IsMap()) {
+        check(doc, additional, kv.second, kv.first, childKey);
+      }
+    }
+    if (const YAML::Node req = schema["required"]) {
+      for (const auto& r : req) {
+        if (!node[r.Scalar()]) {
+          Str msg;
+          msg << "missing required key '" << r.Scalar() << "'";
+          const YAML::Node ps = props ? resolve(props[r.Scalar()]) : YAML::Node();
+          if (ps && ps.IsMap() && ps["description"])
+            msg << " (" << ps["description"].Scalar() << ")";
+          throw inputError(doc, where, key.empty() ? "(top level)" : key, msg);
+        }
+      }
+    }
+    for (const auto& kv : node) {
+      const std::string k = kv.first.Scalar();
+      if (props && props[k]) check(doc, props[k], kv.second, kv.first, join(key, k));
+    }
+  }
+
+  if (const YAML::Node one = schema["oneOf"]) {
+    // Discriminated union: each branch fixes one property with const.
+    std::string discriminator;
+    for (const auto& branch : one) {
+      const YAML::Node b = resolve(branch);
+      if (!b.IsMap() || !b["properties"]) continue;
+      for (const auto& p : b["properties"]) {
+        const YAML::Node ps = resolve(p.second);
+        if (ps.IsMap() && ps["const"]) discriminator = p.first.Scalar();
+      }
+    }
+    if (!discriminator.empty() && node.IsMap()) {
+      const YAML::Node tag = node[discriminator];
+      Str allowed;
+      for (std::size_t i = 0; i < one.size(); ++i) {
+        const YAML::Node b = resolve(one[i]);
+        const YAML::Node c = resolve(b["properties"][discriminator])["const"];
+        allowed << (i ? ", " : "") << c.Scalar();
+        if (tag && sameValue(c, tag)) {
+          check(doc, b, node, parent, key);
+          return;
+        }
+      }
+      throw inputError(
+          doc, tag ? tag : where, join(key, discriminator),
+          Str() << "expected one of " << allowed.str() << "; found " << describeNode(tag));
+    }
+    // Otherwise exactly one branch must accept the node; if none does, the error of the
+    // first branch whose type is the node's kind (a mapping against the object branch), so
+    // that the message names the offending inner key rather than "expected a boolean".
+    std::string firstError, kindError;
+    int accepted = -1;
+    for (int i = 0; i < static_cast<int>(one.size()); ++i) {
+      try {
+        check(doc, one[i], node, parent, key);
+      } catch (const InputError& e) {
+        if (firstError.empty()) firstError = e.what();
+        const YAML::Node b = resolve(one[i]);
+        const YAML::Node type = b.IsMap() ? b["type"] : YAML::Node();
+        const bool sameKind = type && type.IsScalar() &&
+                              ((type.Scalar() == "object") == node.IsMap()) &&
+                              ((type.Scalar() == "array") == node.IsSequence());
+        if (sameKind && kindError.empty()) kindError = e.what();
+        continue;
+      }
+      if (accepted >= 0) {
+        throw inputError(doc, where, key,
+                         Str() << "matches alternatives " << accepted + 1 << " and " << i + 1
+                               << " of a oneOf, expected exactly one; found "
+                               << describeNode(node));
+      }
+      accepted = i;
+    }
+    if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
+  }
+}
+
+}  // namespace ffriga

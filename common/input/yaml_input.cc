@@ -1,0 +1,196 @@
+#include "common/input/yaml_input.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace ffriga {
+
+namespace {
+
+// A plain (unquoted) scalar that YAML or strtod reads as a number that is not finite:
+// .inf, -.Inf, .nan, .NaN, ..., or a literal beyond the range of double (1e999).
+bool isNonFiniteNumber(const YAML::Node& node) {
+  if (!node.IsScalar() || node.Tag() != "?") return false;
+  std::string t = node.Scalar();
+  if (!t.empty() && (t[0] == '+' || t[0] == '-')) t = t.substr(1);
+  for (const char* special : {".inf", ".Inf", ".INF", ".nan", ".NaN", ".NAN"})
+    if (t == special) return true;
+  const char* c = node.Scalar().c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(c, &end);
+  const bool number = end != c && *end == '\0' && std::isdigit(static_cast<unsigned char>(t[0]));
+  return number && (!std::isfinite(v) || (errno == ERANGE && std::abs(v) > 1.0));
+}
+
+std::string childKey(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+// Walks the whole tree once: duplicate keys of a mapping (yaml-cpp keeps both and a lookup
+// sees one of them: the other would be ignored without a word) and numbers that are not
+// finite are errors, naming the key path and the lines.
+void checkTree(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  if (node.IsMap()) {
+    std::map<std::string, int> seen;  // key -> its line
+    for (auto it = node.begin(); it != node.end(); ++it) {
+      const std::string name = it->first.IsScalar() ? it->first.Scalar() : describeNode(it->first);
+      const auto [prev, inserted] = seen.emplace(name, yamlLine(it->first));
+      if (!inserted) {
+        throw inputError(doc, it->first, childKey(key, name),
+                         Str() << "duplicate key: also given on line " << prev->second
+                               << " (each key may appear once in a mapping)");
+      }
+      checkTree(doc, it->second, childKey(key, name));
+    }
+  } else if (node.IsSequence()) {
+    for (std::size_t i = 0; i < node.size(); ++i)
+      checkTree(doc, node[i], Str() << key << "[" << i << "]");
+  } else if (isNonFiniteNumber(node)) {
+    throw inputError(doc, node, key,
+                     Str() << "expected a finite number, found " << node.Scalar());
+  }
+}
+
+}  // namespace
+
+YamlDocument parseYamlText(const std::string& text, const std::string& path) {
+  YamlDocument doc;
+  doc.path = path;
+  doc.text = text;
+  try {
+    doc.root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw InputError(Str() << path << ":" << e.mark.line + 1 << ": invalid YAML: " << e.msg);
+  }
+  if (!doc.root || doc.root.IsNull()) {
+    throw InputError(Str() << path << ":1: the file is empty, expected a YAML mapping");
+  }
+  checkTree(doc, doc.root, "");
+  return doc;
+}
+
+YamlDocument loadYamlFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError(Str() << path << ": cannot open file (" << std::strerror(errno) << ")");
+  }
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parseYamlText(buffer.str(), path);
+}
+
+int yamlLine(const YAML::Node& node) {
+  if (!node.IsDefined()) return 0;
+  const YAML::Mark m = node.Mark();
+  return m.line >= 0 ? m.line + 1 : 0;
+}
+
+namespace {
+
+// Whether `node` is `tree` or lies inside it (identity, not equality).
+bool within(const YAML::Node& node, const YAML::Node& tree) {
+  if (!node.IsDefined() || !tree.IsDefined()) return false;
+  if (node.is(tree)) return true;
+  if (tree.IsSequence()) {
+    for (const YAML::Node& child : tree)
+      if (within(node, child)) return true;
+  } else if (tree.IsMap()) {
+    for (const auto& kv : tree)
+      if (within(node, kv.second)) return true;
+  }
+  return false;
+}
+
+// An error key "a.b[2].c" as an override's dotted key "a.b.2.c".
+std::string dotted(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '[') {
+      out += '.';
+    } else if (c != ']') {
+      out += c;
+    }
+  }
+  return out;
+}
+
+// The override that put `node` into the tree, or, for nodes without a place in the file
+// (a key an override added), the last override whose key is the error's key or above it.
+const YamlOverride* overrideOf(const YamlDocument& doc, const YAML::Node& node,
+                               const std::string& key) {
+  const YamlOverride* from = nullptr;
+  for (const YamlOverride& o : doc.overrides)
+    if (within(node, o.node)) from = &o;
+  if (from || doc.overrides.empty() || yamlLine(node) > 0) return from;
+  const std::string k = dotted(key);
+  for (const YamlOverride& o : doc.overrides)
+    if (k == o.key || k.rfind(o.key + ".", 0) == 0) from = &o;
+  return from;
+}
+
+}  // namespace
+
+InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
+                      const std::string& message) {
+  Str s;
+  s << doc.path;
+  const YamlOverride* from = overrideOf(doc, node, key);
+  const int line = from ? 0 : yamlLine(node);
+  if (line > 0) s << ":" << line;
+  s << ": ";
+  if (from) s << "--set '" << from->text << "': ";
+  if (!key.empty()) s << "key '" << key << "': ";
+  s << message;
+  return InputError(s);
+}
+
+std::string describeNode(const YAML::Node& node) {
+  if (!node.IsDefined()) return "nothing";
+  switch (node.Type()) {
+    case YAML::NodeType::Null:
+      return "an empty value";
+    case YAML::NodeType::Scalar:
+      return node.Tag() == "!" ? "\"" + node.Scalar() + "\"" : node.Scalar();
+    case YAML::NodeType::Sequence:
+      return Str() << "a list of " << node.size() << " items";
+    case YAML::NodeType::Map:
+      return "a mapping";
+    default:
+      return "an undefined value";
+  }
+}
+
+double getDouble(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  double v = 0.0;
+  if (!node.IsScalar() || !YAML::convert<double>::decode(node, v)) {
+    throw inputError(doc, node, key, Str() << "expected a number, found " << describeNode(node));
+  }
+  if (!std::isfinite(v)) {
+    throw inputError(doc, node, key, Str() << "expected a finite number, found " << node.Scalar());
+  }
+  return v;
+}
+
+int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  int v = 0;
+  if (!node.IsScalar() || !YAML::convert<int>::decode(node, v)) {
+    throw inputError(doc, node, key, Str() << "expected an integer, found " << describeNode(node));
+  }
+  return v;
+}
+
+std::string getString(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  if (!node.IsScalar()) {
+    throw inputError(doc, node, key, Str() << "expected a string, found " << describeNode(node));
+  }
+  return node.Scalar();
+}
+
+}  // namespace ffriga

@@ -1,0 +1,55 @@
+// Loading YAML input files and reporting errors in them.
+//
+// Every error about user input names the file, the YAML line (1-based) and the key path
+// ("geometry.radius", "refinement.insert_knots[1]"), says what was expected and what was
+// found, and is thrown as InputError (exit code 2).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <yaml-cpp/yaml.h>
+
+#include "common/base/error.h"
+
+namespace ffriga {
+
+// A command-line override applied to a document (common/input/yaml_overrides.h): its text
+// "KEY=VALUE" and the node it put into the tree (errors about it name the override).
+struct YamlOverride {
+  std::string text;  // KEY=VALUE
+  std::string key;   // KEY, dotted (list indices as components)
+  YAML::Node node;
+};
+
+struct YamlDocument {
+  std::string path;  // as given by the user
+  std::string text;  // the file's contents, kept for provenance
+  YAML::Node root;
+  std::vector<YamlOverride> overrides;  // --set, in order
+};
+
+// Reads and parses a YAML file. Throws InputError if the file cannot be read, is not valid
+// YAML, or is empty.
+YamlDocument loadYamlFile(const std::string& path);
+// Parses YAML text that came from `path` (used by tests and for embedded documents).
+YamlDocument parseYamlText(const std::string& text, const std::string& path);
+
+// 1-based line of a node, 0 if unknown.
+int yamlLine(const YAML::Node& node);
+
+// "FILE:LINE: key 'KEY': MESSAGE" as an InputError; for a node an override put into the
+// tree (or one inside it): "FILE: --set 'KEY=VALUE': key 'KEY': MESSAGE".
+InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
+                      const std::string& message);
+
+// Human-readable rendering of a scalar or the kind of a collection, for "found ..." parts.
+std::string describeNode(const YAML::Node& node);
+
+// Typed access to a validated document. The key must exist and have the right type (the
+// schema has checked); a failed conversion still reports file, line and key.
+double getDouble(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
+int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
+std::string getString(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
+
+}  // namespace ffriga

@@ -1,0 +1,65 @@
+// Model order reduction of a free flexible body (paper Sect. 3.4, Eq. 13; Craig & Bampton,
+// AIAA J. 6(7), 1968), with the floating frame's rigid-body content removed.
+//
+// Craig-Bampton: with the DOFs split into interior i and interface b,
+//   fixed-interface normal modes  (K_ii - lambda M_ii) phi_i = 0   (ARPACK, shift-invert),
+//   constraint modes              Psi_c = [-K_ii^{-1} K_ib; E]     (CHOLMOD, all RHS at once),
+//   Psi = [[Phi_n, -K_ii^{-1} K_ib], [0, E]],
+// reduced stiffness Psi^T K Psi = diag(lambda_n) (+) (K_bb - K_bi K_ii^{-1} K_ib).
+// Modal: Psi = the lowest free-free elastic modes (K - lambda M) phi = 0 (shift sigma < 0
+// because K is singular).
+//
+// Frame (the body frame K_R of the floating frame of reference, paper Sect. 2):
+//   Buckens: Psi <- (E - R (R^T M R)^{-1} R^T M) Psi, i.e. every shape is M-orthogonal to
+//     the rigid modes R (int rho u dV = 0, int rho x0 x u dV = 0);
+//   tangent: Psi <- (E - R (C R)^{-1} C) Psi with C u = 0 the frame conditions (the
+//     displacement, and in 3D the rotation, of a marker vanish).
+// Either projection leaves nr directions of Psi dependent; the reduced mass matrix is
+// orthonormalised in its range (eigenvalues below 1e-10 of the largest dropped: these are
+// the rigid directions, reported) and the small eigenproblem K_r z = omega^2 M_r z gives
+// Phi = Psi T with Phi^T M Phi = E and Phi^T K Phi = diag(omega^2) (Eq. 13).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "preproc/assembly/elasticity_assembly.h"
+
+namespace ffriga {
+
+enum class ReductionMethod { kCraigBampton, kModal };
+enum class FrameKind { kBuckens, kTangent };
+
+struct ReductionOptions {
+  ReductionMethod method = ReductionMethod::kCraigBampton;
+  FrameKind frame = FrameKind::kBuckens;
+  int normal_modes = 10;             // fixed-interface (CB) or free-free (modal) modes
+  std::vector<bool> interface;       // per DOF: on the Craig-Bampton interface
+  Eigen::MatrixXd rigid_modes;       // ndof x nr, the rigid-body fields
+  Eigen::MatrixXd frame_conditions;  // nr x ndof, C for the tangent frame
+};
+
+struct ReducedModel {
+  Eigen::MatrixXd Phi;     // ndof x nq, M-orthonormal
+  Eigen::VectorXd omega2;  // nq, ascending, (rad/s)^2
+  int rigid_dropped = 0;   // directions removed as rigid / dependent
+  int normal_modes = 0;
+  int constraint_modes = 0;
+  Eigen::VectorXd normal_mode_omega2;  // fixed-interface (CB) or free-free (modal) eigenvalues
+  double factor_rcond = 0.0;           // CHOLMOD's estimate for K_ii (CB)
+  double factor_nonzeros = 0.0;        // stored entries of K_ii's Cholesky factor (CB)
+  double factor_flops = 0.0;           // operations of its numeric factorisation (CB)
+  int arpack_iterations = 0;
+  std::vector<std::pair<std::string, double>> timings;  // (step, wall time in s)
+};
+
+// Throws InputError for requests the model cannot satisfy (no interface, more modes than
+// DOFs) and ComputeError when a factorisation or eigen solve fails; an interface that does
+// not suppress every rigid motion (K_ii singular) is reported as such.
+ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M,
+                        const ReductionOptions& options);
+
+}  // namespace ffriga

@@ -1,0 +1,24 @@
+// Hertz's prediction (common/mechanics/hertz.h) for a contact pair of a scene whose two bodies are
+// spheres: both SIDs describe a geometry of type half_disk or sphere (radius and material
+// from the SID's /geometry and /material), and the scene gives their initial positions and
+// velocities. The approach speed is the relative velocity along the line of centres at
+// t = 0. Used by ffrsim to print the maximum force and contact duration next to Hertz.
+#pragma once
+
+#include <optional>
+
+#include "common/mechanics/hertz.h"
+#include "runtime/scene/scene.h"
+
+namespace ffriga {
+
+struct HertzReference {
+  HertzImpact impact;
+  double approach_speed = 0.0;  // m/s
+  HertzSphere sphere_a{}, sphere_b{};  // the pair's bodies A and B as Hertz sees them
+};
+
+// Empty when a body is not a sphere or the bodies do not approach each other.
+std::optional<HertzReference> hertzReference(const Scene& scene, int pair);
+
+}  // namespace ffriga

@@ -1,0 +1,117 @@
+#include <cstdio>
+
+#include <catch2/catch.hpp>
+
+#include "runtime/bodies/floating_body.h"
+#include "runtime/output/result_writer.h"
+#include "runtime/simulation/simulation.h"
+#include "tests/support/synthetic_bodies.h"
+
+using namespace ffriga;
+
+namespace {
+
+// Reads a whole double dataset (rows x cols; cols = 1 for 1D).
+Eigen::MatrixXd readDataset(hid_t file, const std::string& name) {
+  const h5::Context c{"test"};
+  h5::Handle ds(c.check(H5Dopen2(file, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  h5::Handle space(H5Dget_space(ds.id()), H5Sclose);
+  hsize_t dims[2] = {0, 1};
+  const int rank = H5Sget_simple_extent_dims(space.id(), dims, nullptr);
+  if (rank == 1) dims[1] = 1;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> m(dims[0], dims[1]);
+  if (dims[0] > 0)
+    c.check(H5Dread(ds.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, m.data()),
+            "read " + name, 0);
+  return m;
+}
+
+// Free fall of a rigid body; the system asks for an interrupt once t passes `stop_at`.
+class FallingBody : public MultibodySystem {
+ public:
+  explicit FallingBody(double stop_at) : stop_at_(stop_at) {
+    addBody(std::make_unique<FloatingBody3d>(
+        "ball", std::make_shared<FlexibleBodySid>(test::rigidBody(1.0, {0.1, 0.1, 0.1}))));
+    setGravity({0.0, 0.0, -9.81});
+  }
+  void rhs(double t, const double* y, double* ydot) override {
+    if (t > stop_at_) requestInterrupt();
+    MultibodySystem::rhs(t, y, ydot);
+  }
+
+ private:
+  double stop_at_;
+};
+
+SimulationSettings settings() {
+  SimulationSettings s;
+  s.end_time = 0.5;
+  s.output_interval = 0.05;
+  s.integrator.rtol = 1e-10;
+  s.integrator.atol = Eigen::VectorXd::Constant(13, 1e-12);
+  s.verbosity = 0;
+  return s;
+}
+
+Eigen::VectorXd initialState() {
+  Eigen::VectorXd y0(13);
+  y0 << 0, 0, 10, 1, 0, 0, 0, 1.0, 0, 0, 0, 0, 0;
+  return y0;
+}
+
+}  // namespace
+
+TEST_CASE("result file: round trip of a free fall", "[result]") {
+  const std::string path = "result_roundtrip_test.h5";
+  FallingBody sys(1e9);
+  {
+    ResultWriter w(path, sys, "unit test", "scene: none\n");
+    const SimulationReport r = simulate(sys, initialState(), settings(), w);
+    REQUIRE(r.completed);
+    w.close();
+  }
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  REQUIRE(f.id() >= 0);
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "format") == kResultFormat);
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "status") == "completed");
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "scene_yaml") == "scene: none\n");
+  const Eigen::MatrixXd t = readDataset(f.id(), "time");
+  const Eigen::MatrixXd r = readDataset(f.id(), "bodies/ball/position");
+  REQUIRE(t.rows() == 11);
+  REQUIRE(r.rows() == 11);
+  REQUIRE(r.cols() == 3);
+  for (int i = 0; i < t.rows(); ++i) {
+    REQUIRE(t(i, 0) == Approx(0.05 * i).margin(1e-15));
+    // Interpolated output of an exact-polynomial solution with rtol 1e-10: 1e-8 m is safe.
+    REQUIRE(std::abs(r(i, 0) - t(i, 0)) < 1e-8);
+    REQUIRE(std::abs(r(i, 2) - (10.0 - 0.5 * 9.81 * t(i, 0) * t(i, 0))) < 1e-8);
+  }
+  const Eigen::MatrixXd ek = readDataset(f.id(), "energy/kinetic");
+  const Eigen::MatrixXd eg = readDataset(f.id(), "energy/gravity");
+  // Energy balance of the free fall: same integration error budget.
+  REQUIRE(std::abs((ek(10, 0) + eg(10, 0)) - (ek(0, 0) + eg(0, 0))) < 1e-6);
+  std::remove(path.c_str());
+}
+
+TEST_CASE("result file: an interrupted run leaves a readable file", "[result]") {
+  const std::string path = "result_interrupted_test.h5";
+  clearInterrupt();
+  FallingBody sys(0.2);
+  {
+    ResultWriter w(path, sys, "unit test", "");
+    const SimulationReport r = simulate(sys, initialState(), settings(), w);
+    REQUIRE(r.interrupted);
+    REQUIRE_FALSE(r.completed);
+    // No explicit close: the writer's destructor (as on any exit path) closes the file.
+  }
+  clearInterrupt();
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  REQUIRE(f.id() >= 0);
+  const std::string status = h5::readStringAttribute(h5::Context{path}, f.id(), "status");
+  REQUIRE(status.rfind("interrupted by SIGINT at t = ", 0) == 0);
+  const Eigen::MatrixXd t = readDataset(f.id(), "time");
+  REQUIRE(t.rows() >= 4);  // outputs up to ~0.2 s
+  REQUIRE(t.rows() < 11);  // but not the whole run
+  REQUIRE(readDataset(f.id(), "bodies/ball/position").rows() == t.rows());
+  std::remove(path.c_str());
+}
