@@ -40,6 +40,7 @@ class BodyModel {
 
   const std::string& name() const { return name_; }
   const FlexibleBodySid& sid() const { return *sid_; }
+  const std::shared_ptr<const FlexibleBodySid>& sharedSid() const { return sid_; }
   int nq() const { return sid_->nq(); }
   int spaceDim() const { return sid_->space_dim; }
   virtual int numRigidPositions() const = 0;

@@ -42,14 +42,15 @@ Eigen::Index argInteriorMax(const Eigen::VectorXd& v) {
 
 }  // namespace
 
-PeakStressLines::PeakStressLines(const MultibodySystem& system,
-                                 std::vector<std::optional<HertzPartner>> partners) {
-  for (int b = 0; b < system.numBodies(); ++b) {
-    const FlexibleBodySid& sid = system.body(b).sid();
+PeakStressLines::PeakStressLines(ResultFile& file, const OutputLayout& layout,
+                                 std::vector<std::optional<HertzPartner>> partners)
+    : file_(file) {
+  for (int b = 0; b < static_cast<int>(layout.bodies.size()); ++b) {
+    const FlexibleBodySid& sid = *layout.bodies[b].sid;
     for (const StressLine& sl : sid.stress_lines) {
       Line line;
       line.body = b;
-      line.body_name = system.body(b).name();
+      line.body_name = layout.bodies[b].name;
       line.source = &sl;
       if (b < static_cast<int>(partners.size()) && partners[b] && alongRadius(sl, sid.geometry))
         line.hertz = partners[b];
@@ -62,21 +63,19 @@ PeakStressLines::PeakStressLines(const MultibodySystem& system,
   }
 }
 
-void PeakStressLines::record(double t, double force, const Eigen::VectorXd& y,
-                             const MultibodySystem& system) {
+void PeakStressLines::recordPeak(double t, double force, const std::vector<BodySample>& bodies) {
   if (lines_.empty()) return;
   time_ = t;
   force_ = force;
   pending_ = true;
   for (Line& line : lines_) {
-    const BodyModel& body = system.body(line.body);
-    const BodyPose pose = body.pose(y.data() + system.positionOffset(line.body));
+    const Eigen::VectorXd& q = bodies[line.body].pose_q;
     const SampledModes& S = (*line.source).samples;
     const Eigen::Index n = S.points.rows();
     line.stress.setZero(n, 6);
     line.von_mises.setZero(n);
-    if (pose.q.size() == 0 || pose.q.size() != S.stress.cols()) continue;  // frozen: no stress
-    const Eigen::VectorXd sigma = S.stress * pose.q;
+    if (q.size() == 0 || q.size() != S.stress.cols()) continue;  // frozen: no stress
+    const Eigen::VectorXd sigma = S.stress * q;
     for (Eigen::Index i = 0; i < n; ++i) {
       line.stress.row(i) = sigma.segment(6 * i, 6).transpose();
       line.von_mises(i) = vonMises(sigma.data() + 6 * i);
@@ -84,9 +83,11 @@ void PeakStressLines::record(double t, double force, const Eigen::VectorXd& y,
   }
 }
 
-void PeakStressLines::write(const h5::Context& c, hid_t file) {
+void PeakStressLines::flush() {
   if (!pending_) return;
   pending_ = false;
+  const h5::Context c = file_.context();
+  const hid_t file = file_.id();
   if (h5::exists(file, "stress_lines")) {
     c.check(H5Ldelete(file, "stress_lines", H5P_DEFAULT), "replace /stress_lines", 0);
   }

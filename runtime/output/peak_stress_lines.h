@@ -13,9 +13,10 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid/hdf5_io.h"
 #include "common/mechanics/hertz.h"
-#include "runtime/system/multibody_system.h"
+#include "common/sid/hdf5_io.h"
+#include "runtime/output/output_sink.h"
+#include "runtime/output/result_file.h"
 
 namespace ffriga {
 
@@ -32,15 +33,19 @@ struct StressLinePeak {
   double hertz_von_mises = 0.0, hertz_depth = 0.0;       // Pa, m
 };
 
-class PeakStressLines {
+class PeakStressLines : public OutputSink {
  public:
-  // partners[b]: body b's Hertz partner, if any (size numBodies, or empty: none).
-  PeakStressLines(const MultibodySystem& system, std::vector<std::optional<HertzPartner>> partners);
+  // partners[b]: body b's Hertz partner, if any (size of layout.bodies, or empty: none).
+  PeakStressLines(ResultFile& file, const OutputLayout& layout,
+                  std::vector<std::optional<HertzPartner>> partners);
   bool empty() const { return lines_.empty(); }
-  // The state y at time t has the largest contact force so far (N): recover the stresses.
-  void record(double t, double force, const Eigen::VectorXd& y, const MultibodySystem& system);
+  void write(const OutputSample&) override {}
+  // The bodies' state at time t has the largest contact force so far (N): recover the
+  // stresses.
+  void recordPeak(double t, double force, const std::vector<BodySample>& bodies) override;
+  bool wantsPeaks() const override { return !lines_.empty(); }
   // Writes /stress_lines if something was recorded since the last write.
-  void write(const h5::Context& c, hid_t file);
+  void flush() override;
   // Every line's interior maximum at the last recorded peak (empty before any record).
   std::vector<StressLinePeak> peaks() const;
 
@@ -54,6 +59,7 @@ class PeakStressLines {
     Eigen::MatrixXd stress;        // n x 6, Pa
     Eigen::VectorXd von_mises;     // Pa
   };
+  ResultFile& file_;
   std::vector<Line> lines_;
   double time_ = -1.0, force_ = 0.0;
   bool pending_ = false;

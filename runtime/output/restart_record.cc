@@ -5,9 +5,50 @@
 #include "common/base/error.h"
 #include "common/sid/hdf5_io.h"
 #include "common/input/yaml_overrides.h"
-#include "runtime/output/result_writer.h"
 
 namespace ffriga {
+
+RestartRecordWriter::RestartRecordWriter(ResultFile& file, int state_size, long rows)
+    : file_(file), rows_(rows) {
+  const h5::Context c = file_.context();
+  if (file_.appending()) {
+    group_ = h5::openGroup(c, file_.id(), "restart");
+    state_ = h5::Handle(c.check(H5Dopen2(group_.id(), "state", H5P_DEFAULT), "H5Dopen2 'state'"),
+                        H5Dclose);
+    return;
+  }
+  group_ = file_.group(file_.id(), "restart");
+  const hsize_t dims[1] = {static_cast<hsize_t>(state_size)};
+  h5::Handle space(c.check(H5Screate_simple(1, dims, nullptr), "H5Screate_simple"), H5Sclose);
+  state_ = h5::Handle(c.check(H5Dcreate2(group_.id(), "state", H5T_NATIVE_DOUBLE, space.id(),
+                                         H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                              "H5Dcreate2 'state'"),
+                      H5Dclose);
+  h5::writeAttribute(c, state_.id(), "unit", std::string("SI"));
+  h5::writeAttribute(c, state_.id(), "description",
+                     std::string("full state vector y at the last row on disk (the layout of "
+                                 "MultibodySystem: positions, then velocities)"));
+  h5::writeAttribute(c, group_.id(), "rows", 0.0);
+}
+
+void RestartRecordWriter::write(const OutputSample& sample) {
+  ++rows_;
+  time_ = sample.time;
+  y_ = sample.state;
+  pending_ = true;
+}
+
+void RestartRecordWriter::flush() {
+  if (!pending_) return;
+  const h5::Context c = file_.context();
+  c.check(H5Dwrite(state_.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, y_.data()),
+          "H5Dwrite 'restart/state'");
+  h5::writeAttribute(c, group_.id(), "time_s", time_);
+  for (const auto& [name, value] : figures_)
+    h5::writeAttribute(c, group_.id(), "figure_" + name, value);
+  h5::writeAttribute(c, group_.id(), "rows", static_cast<double>(rows_));
+  pending_ = false;
+}
 
 RestartRecord readRestartRecord(const std::string& path) {
   h5::silenceErrors();

@@ -12,6 +12,9 @@
 
 #include <Eigen/Dense>
 
+#include "runtime/output/output_sink.h"
+#include "runtime/output/result_file.h"
+
 namespace ffriga {
 
 struct RestartRecord {
@@ -27,6 +30,30 @@ struct RestartRecord {
   std::vector<std::string> sid_files;  // absolute paths of the SIDs the run used
   double end_time = 0.0;               // s, the end time the run was going to
   long restarts = 0;                   // how often it was restarted already
+};
+
+// Writes the record into the result file: the state of the last row written (with its time
+// and the row count) and the run's figures (setFigures, by name: runtime/output/run_figures.h),
+// at every flush after a row was appended.
+class RestartRecordWriter : public OutputSink {
+ public:
+  // Creates the group `restart` for a state of `state_size` entries, or opens it when the
+  // file is opened for a restart; `rows`: the rows already in the file.
+  RestartRecordWriter(ResultFile& file, int state_size, long rows);
+  void write(const OutputSample& sample) override;
+  void flush() override;
+  void setFigures(const std::map<std::string, double>& figures) { figures_ = figures; }
+  // The record is written again at the next flush (with the figures set since).
+  void markPending() { pending_ = rows_ > 0; }
+
+ private:
+  ResultFile& file_;
+  h5::Handle group_, state_;
+  bool pending_ = false;  // a row was appended since the record was written
+  long rows_ = 0;
+  double time_ = 0.0;
+  Eigen::VectorXd y_;
+  std::map<std::string, double> figures_;
 };
 
 // Reads the record of a result file; InputError (exit code 2) naming the file if it is not a

@@ -83,19 +83,19 @@ std::string xdmfPathFor(const std::string& result_path) {
   return result_path + ".xdmf";
 }
 
-FrameWriter::FrameWriter(const std::string& result_path, hid_t file, const MultibodySystem& system,
+FrameWriter::FrameWriter(ResultFile& file, const OutputLayout& layout,
                          const VisualisationSettings& settings, double resume_time)
-    : path_(result_path), file_(file), settings_(settings) {
+    : path_(file.path()), file_(file.id()), settings_(settings) {
   const h5::Context c{path_};
   const bool appending = resume_time >= 0.0;
-  for (int i = 0; i < system.numBodies(); ++i) {
-    const BodyModel& body = system.body(i);
-    if (body.sid().mesh.empty()) continue;
+  for (int i = 0; i < static_cast<int>(layout.bodies.size()); ++i) {
+    const BodyLayout& body = layout.bodies[i];
+    if (body.sid->mesh.empty()) continue;
     auto b = std::make_unique<Body>();
     b->index = i;
-    b->name = body.name();
-    b->mesh = &body.sid().mesh;
-    b->axisymmetric = body.sid().model == "axisymmetric";
+    b->name = body.name;
+    b->mesh = &body.sid->mesh;
+    b->axisymmetric = body.sid->model == "axisymmetric";
     b->Phi = b->mesh->samples.Phi.cast<float>();
     b->stress = b->mesh->samples.stress.cast<float>();
     const int np = static_cast<int>(b->meshPoints());
@@ -183,22 +183,23 @@ bool FrameWriter::due(double t) const {
   return t >= next_ - 1e-9 * settings_.interval;
 }
 
-void FrameWriter::append(double t, const Eigen::VectorXd& y, const MultibodySystem& system) {
+void FrameWriter::write(const OutputSample& sample) {
+  if (!due(sample.time)) return;
+  const double t = sample.time;
   times_.push_back(t);
   next_ = frameAfter(t);
   const double m = settings_.magnification;
   for (auto& bp : bodies_) {
     Body& b = *bp;
-    const BodyModel& body = system.body(b.index);
-    const BodyPose pose = body.pose(y.data() + system.positionOffset(b.index));
+    const BodySample& pose = sample.bodies[b.index];
     const SampledModes& S = b.mesh->samples;
     const int s = static_cast<int>(S.points.cols());
     const Eigen::Index np = S.points.rows();
     // Frozen bodies have no elastic coordinates: rigid motion only.
-    const bool elastic = pose.q.size() > 0 && pose.q.size() == b.Phi.cols();
+    const bool elastic = pose.pose_q.size() > 0 && pose.pose_q.size() == b.Phi.cols();
     Eigen::VectorXf u = Eigen::VectorXf::Zero(np * s), sigmaf = Eigen::VectorXf::Zero(np * 6);
     if (elastic) {
-      const Eigen::VectorXf q = pose.q.cast<float>();
+      const Eigen::VectorXf q = pose.pose_q.cast<float>();
       u.noalias() = b.Phi * q;
       sigmaf.noalias() = b.stress * q;
     }

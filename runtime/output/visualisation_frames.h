@@ -28,7 +28,8 @@
 #include <Eigen/Dense>
 
 #include "common/sid/hdf5_io.h"
-#include "runtime/system/multibody_system.h"
+#include "runtime/output/output_sink.h"
+#include "runtime/output/result_file.h"
 
 namespace ffriga {
 
@@ -42,19 +43,21 @@ struct VisualisationSettings {
 // RESULT.xdmf for RESULT.h5 (any other name: the name with .xdmf appended).
 std::string xdmfPathFor(const std::string& result_path);
 
-class FrameWriter {
+class FrameWriter : public OutputSink {
  public:
   // Creates the group /visualisation of `file` (or, with resume_time >= 0, opens it and
   // drops the frames after resume_time). Bodies without a mesh (rigid bodies) are skipped.
-  FrameWriter(const std::string& result_path, hid_t file, const MultibodySystem& system,
-              const VisualisationSettings& settings, double resume_time);
-  ~FrameWriter();
+  FrameWriter(ResultFile& file, const OutputLayout& layout, const VisualisationSettings& settings,
+              double resume_time);
+  ~FrameWriter() override;
   // Whether an output row at time t gets a frame.
   bool due(double t) const;
-  void append(double t, const Eigen::VectorXd& y, const MultibodySystem& system);
+  // A frame of the sample's bodies if one is due.
+  void write(const OutputSample& sample) override;
   // Writes pending frames to the HDF5 file.
-  void flush();
-  // Rewrites the XDMF file for the frames written (call after the HDF5 file is flushed).
+  void flush() override;
+  // Rewrites the XDMF file for the frames on disk.
+  void afterFlush() override { writeXdmf(); }
   void writeXdmf() const;
   long frames() const { return static_cast<long>(times_.size()); }
 

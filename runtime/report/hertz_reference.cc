@@ -40,4 +40,24 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   return h;
 }
 
+HertzReferences hertzReferences(const Scene& scene) {
+  HertzReferences out;
+  for (int c = 0; c < scene.system->numContacts(); ++c) out.push_back(hertzReference(scene, c));
+  return out;
+}
+
+std::vector<std::optional<HertzPartner>> hertzPartners(const Scene& scene,
+                                                       const HertzReferences& hertz) {
+  const MultibodySystem& sys = *scene.system;
+  std::vector<std::optional<HertzPartner>> partners(sys.numBodies());
+  for (int c = 0; c < sys.numContacts(); ++c) {
+    const auto& h = hertz[c];
+    if (!h) continue;
+    const int a = sys.contact(c).bodyA(), b = sys.contact(c).bodyB();
+    if (!partners[a]) partners[a] = HertzPartner{h->sphere_a, h->sphere_b};
+    if (!partners[b]) partners[b] = HertzPartner{h->sphere_b, h->sphere_a};
+  }
+  return partners;
+}
+
 }  // namespace ffriga

@@ -6,8 +6,10 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "common/mechanics/hertz.h"
+#include "runtime/output/peak_stress_lines.h"
 #include "runtime/scene/scene.h"
 
 namespace ffriga {
@@ -20,5 +22,14 @@ struct HertzReference {
 
 // Empty when a body is not a sphere or the bodies do not approach each other.
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair);
+
+// Hertz's prediction for each contact pair of the scene (empty where it has none).
+using HertzReferences = std::vector<std::optional<HertzReference>>;
+HertzReferences hertzReferences(const Scene& scene);
+
+// Each body's Hertz partner (the first pair with a reference that it is part of), for the
+// stresses along its lines (runtime/output/peak_stress_lines.h).
+std::vector<std::optional<HertzPartner>> hertzPartners(const Scene& scene,
+                                                       const HertzReferences& hertz);
 
 }  // namespace ffriga

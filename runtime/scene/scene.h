@@ -27,18 +27,15 @@
 
 #include <Eigen/Dense>
 
-#include "common/sid/sid.h"
-#include "common/sid/sid_file.h"
 #include "common/input/yaml_input.h"
-#include "runtime/system/multibody_system.h"
+#include "common/sid/sid.h"
+#include "runtime/output/result_writer.h"
+#include "runtime/scene/scene_bodies.h"
 #include "runtime/simulation/simulation.h"
+#include "runtime/system/multibody_system.h"
 #include "runtime/system/static_preload.h"
 
 namespace ffriga {
-
-// Reads the SID file at `path`; `content` is SidContent::kWithoutMesh when the scene draws
-// no visualisation frames (the loader may then skip the mesh's sampled modes).
-using SidLoader = std::function<FlexibleBodySid(const std::string& path, SidContent content)>;
 
 struct Scene {
   YamlDocument doc;
@@ -46,8 +43,7 @@ struct Scene {
   std::unique_ptr<MultibodySystem> system;
   Eigen::VectorXd y0;
   SimulationSettings settings;
-  int flush_rows = 16;
-  double flush_interval = 2.0;  // s of wall time
+  FlushConfig flush;  // outputs.flush_rows, outputs.flush_interval
   std::vector<std::string> sid_files;  // resolved path of each body's SID
   // Initial reference position (m) and velocity (m/s) of each body, inertial components,
   // as given in the scene.
@@ -59,13 +55,6 @@ struct Scene {
   // prints them and stores them in the result file (root attribute `warnings`).
   std::vector<std::string> warnings;
   VisualisationSettings visualisation;  // outputs.visualisation
-};
-
-// Initial pose of one body while the scene is assembled: inertial components.
-struct InitialPose {
-  Eigen::Vector3d r, v, w;  // position (m), velocity (m/s), angular velocity (rad/s)
-  Eigen::Matrix3d A;        // body -> inertial
-  Eigen::VectorXd q, qd;
 };
 
 // sets: command-line overrides "KEY=VALUE" (common/input/yaml_overrides.h), applied before the

@@ -5,18 +5,13 @@
 
 #include "runtime/bodies/marker_kinematics.h"
 #include "runtime/bodies/rotation.h"
+#include "runtime/scene/scene_values.h"
 #include "runtime/forces/hertz_point_contact.h"
 #include "runtime/forces/spring_damper.h"
 
 namespace ffriga {
 
 namespace {
-
-Eigen::Vector3d vector3(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
-  Eigen::Vector3d v;
-  for (int i = 0; i < 3; ++i) v(i) = getDouble(doc, node[i], Str() << key << "[" << i << "]");
-  return v;
-}
 
 // YAML spelling of JointType (the schema restricts the values to these).
 const std::pair<const char*, JointType> kJointTypes[] = {{"spherical", JointType::kSpherical},

@@ -9,7 +9,7 @@
 
 #include "common/input/yaml_input.h"
 #include "runtime/system/multibody_system.h"
-#include "runtime/scene/scene.h"
+#include "runtime/scene/scene_bodies.h"
 
 namespace ffriga {
 

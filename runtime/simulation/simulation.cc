@@ -4,10 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <vector>
 
 #include "common/base/error.h"
+#include "runtime/simulation/output_sampler.h"
 
 namespace ffriga {
 
@@ -19,7 +19,7 @@ double seconds(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double>(b - a).count();
 }
 
-void countSearches(const MultibodySystem& system, SimulationReport& r) {
+void countSearches(const MultibodySystem& system, RunFigures& r) {
   r.contact_searches = r.contact_searches_avoided = 0;
   for (int c = 0; c < system.numContacts(); ++c) {
     r.contact_searches += system.contact(c).searches();
@@ -27,38 +27,21 @@ void countSearches(const MultibodySystem& system, SimulationReport& r) {
   }
 }
 
-void writeStatistics(ResultWriter& w, const SimulationReport& r) {
-  w.setAttribute("status", r.status);
-  w.setAttribute("final_time_s", r.final_time);
-  w.setAttribute("wall_time_s", r.wall_time_s);
-  // Headline figures (schemas/result_format.md): -1 where there was no contact.
-  w.setAttribute("max_contact_force_N", r.max_normal_force);
-  w.setAttribute("max_contact_force_time_s", r.max_force_time);
-  w.setAttribute("contact_begin_s", r.contact_begin);
-  w.setAttribute("contact_end_s", r.contact_end);
-  w.setAttribute("contact_duration_s", r.contact_begin >= 0.0 && r.contact_end >= 0.0
-                                           ? r.contact_end - r.contact_begin
-                                           : -1.0);
-  w.setAttribute("solver_steps", r.stats.steps);
-  w.setAttribute("solver_rhs_evals", r.stats.rhs_evals);
-  w.setAttribute("solver_jacobian_evals", r.stats.jacobian_evals);
-  w.setAttribute("solver_jacobian_rhs_evals", r.stats.jacobian_rhs_evals);
-  w.setAttribute("solver_linear_setups", r.stats.linear_setups);
-  w.setAttribute("solver_error_test_failures", r.stats.error_test_failures);
-  w.setAttribute("solver_nonlinear_iterations", r.stats.nonlinear_iterations);
-  w.setAttribute("solver_convergence_failures", r.stats.convergence_failures);
-  w.setAttribute("contact_point_searches", static_cast<long>(r.contact_searches));
-  w.setAttribute("contact_point_searches_avoided", static_cast<long>(r.contact_searches_avoided));
-  const PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
-  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
-  for (int i = 0; i < 3; ++i) {
-    w.setAttribute(std::string("phase_") + names[i] + "_wall_s", phases[i]->wall_s);
-    w.setAttribute(std::string("phase_") + names[i] + "_steps", phases[i]->steps);
-    w.setAttribute(std::string("phase_") + names[i] + "_rhs_evals", phases[i]->rhs_evals);
-  }
+// The counters of the parts of a run before a restart (`before`) plus this part's.
+SolverCounts sumOf(const SolverCounts& before, const IntegratorStats& now) {
+  SolverCounts s = before;
+  s.steps += now.steps;
+  s.rhs_evals += now.rhs_evals;
+  s.jacobian_evals += now.jacobian_evals;
+  s.jacobian_rhs_evals += now.jacobian_rhs_evals;
+  s.linear_setups += now.linear_setups;
+  s.error_test_failures += now.error_test_failures;
+  s.nonlinear_iterations += now.nonlinear_iterations;
+  s.convergence_failures += now.convergence_failures;
+  return s;
 }
 
-// The step limit of the approach control (simulate()). It acts through CVODE's stop time,
+// The step limit of the approach control (TimeLoop). It acts through CVODE's stop time,
 // which CVODE honours in the very next step (a new maximum step only takes effect at its
 // next step size choice: seen stepping 2 ms over a 0.2 ms limit and through the contact).
 class ApproachControl {
@@ -117,92 +100,20 @@ void checkRepresentable(const MultibodySystem& system, double t) {
   }
 }
 
-IntegratorStats sumOf(const IntegratorStats& a, const IntegratorStats& b) {
-  IntegratorStats s = b;
-  s.steps += a.steps;
-  s.rhs_evals += a.rhs_evals;
-  s.jacobian_evals += a.jacobian_evals;
-  s.jacobian_rhs_evals += a.jacobian_rhs_evals;
-  s.linear_setups += a.linear_setups;
-  s.error_test_failures += a.error_test_failures;
-  s.nonlinear_iterations += a.nonlinear_iterations;
-  s.convergence_failures += a.convergence_failures;
-  return s;
-}
-
-// The figures a restart needs to continue the report (restart record, by name).
-std::map<std::string, double> runFigures(const SimulationReport& r, int phase, double wall) {
-  std::map<std::string, double> f = {
-      {"phase", phase},
-      {"wall_time_s", wall},
-      {"max_contact_force_N", r.max_normal_force},
-      {"max_contact_force_time_s", r.max_force_time},
-      {"contact_begin_s", r.contact_begin},
-      {"contact_end_s", r.contact_end},
-      {"steps", static_cast<double>(r.stats.steps)},
-      {"rhs_evals", static_cast<double>(r.stats.rhs_evals)},
-      {"jacobian_evals", static_cast<double>(r.stats.jacobian_evals)},
-      {"jacobian_rhs_evals", static_cast<double>(r.stats.jacobian_rhs_evals)},
-      {"linear_setups", static_cast<double>(r.stats.linear_setups)},
-      {"error_test_failures", static_cast<double>(r.stats.error_test_failures)},
-      {"nonlinear_iterations", static_cast<double>(r.stats.nonlinear_iterations)},
-      {"convergence_failures", static_cast<double>(r.stats.convergence_failures)}};
-  const PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
-  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
-  for (int i = 0; i < 3; ++i) {
-    f[std::string(names[i]) + "_wall_s"] = phases[i]->wall_s;
-    f[std::string(names[i]) + "_steps"] = static_cast<double>(phases[i]->steps);
-    f[std::string(names[i]) + "_rhs_evals"] = static_cast<double>(phases[i]->rhs_evals);
-  }
-  return f;
-}
-
-void restoreFigures(const RestartRecord& rec, SimulationReport& r, int& phase,
-                    IntegratorStats& stats, double& wall) {
-  auto get = [&](const std::string& name) {
-    const auto it = rec.figures.find(name);
-    return it == rec.figures.end() ? 0.0 : it->second;
-  };
-  auto count = [&](const std::string& name) { return std::lround(get(name)); };
-  phase = static_cast<int>(count("phase"));
-  wall = get("wall_time_s");
-  r.max_normal_force = get("max_contact_force_N");
-  r.max_force_time =
-      rec.figures.count("max_contact_force_time_s") ? get("max_contact_force_time_s") : -1.0;
-  r.contact_begin = rec.figures.count("contact_begin_s") ? get("contact_begin_s") : -1.0;
-  r.contact_end = rec.figures.count("contact_end_s") ? get("contact_end_s") : -1.0;
-  stats.steps = count("steps");
-  stats.rhs_evals = count("rhs_evals");
-  stats.jacobian_evals = count("jacobian_evals");
-  stats.jacobian_rhs_evals = count("jacobian_rhs_evals");
-  stats.linear_setups = count("linear_setups");
-  stats.error_test_failures = count("error_test_failures");
-  stats.nonlinear_iterations = count("nonlinear_iterations");
-  stats.convergence_failures = count("convergence_failures");
-  PhaseStats* phases[3] = {&r.before, &r.during, &r.after};
-  const char* names[3] = {"before_contact", "during_contact", "after_contact"};
-  for (int i = 0; i < 3; ++i) {
-    phases[i]->wall_s = get(std::string(names[i]) + "_wall_s");
-    phases[i]->steps = count(std::string(names[i]) + "_steps");
-    phases[i]->rhs_evals = count(std::string(names[i]) + "_rhs_evals");
-  }
-  r.stats = stats;
-}
-
 // Phase bookkeeping (paper Table 3): whether the bodies touch at the end of the step, as
 // the step's last right-hand side saw it (MultibodySystem::lastRhsContacts, the Hertz point
-// contacts' forces); the largest force so far goes into the report.
-bool contactAtStepEnd(const MultibodySystem& system, SimulationReport& report) {
+// contacts' forces); the largest force so far goes into the figures.
+bool contactAtStepEnd(const MultibodySystem& system, RunFigures& figures) {
   bool contact = false;
   for (const ContactState& s : system.lastRhsContacts()) {
     contact = contact || s.active_points > 0;
-    report.max_normal_force = std::max(report.max_normal_force, s.normal_force);
+    figures.max_contact_force = std::max(figures.max_contact_force, s.normal_force);
   }
   for (int f = 0; f < system.numLineForces(); ++f) {
     if (!system.lineForce(f).isContact()) continue;
     const double force = -system.lastRhsLineForces()[f].tension;
     contact = contact || force > 0.0;
-    report.max_normal_force = std::max(report.max_normal_force, force);
+    figures.max_contact_force = std::max(figures.max_contact_force, force);
   }
   return contact;
 }
@@ -232,7 +143,7 @@ void writeOutputs(BdfIntegrator& integ, MultibodySystem& system, ResultWriter& w
                                << "constraints and the quasi-static manifold did not converge");
     }
     system.normalize(y.data());
-    writer.append(to, y, system);
+    writer.append(outputSample(system, to, y));
   }
 }
 
@@ -250,6 +161,150 @@ void printProgress(const SimulationSettings& settings, double t, const Integrato
   }
 }
 
+// One run of the time loop: its output schedule, contact phase and figures.
+class TimeLoop {
+ public:
+  TimeLoop(MultibodySystem& system, const SimulationSettings& settings, ResultWriter& writer)
+      : system_(system), settings_(settings), writer_(writer), start_(Clock::now()) {
+    nOut_ = std::max(1L, std::lround(std::ceil(settings.end_time / settings.output_interval - 1e-9)));
+    last_progress_ = start_;
+  }
+  // The first row at t = 0, or (a restart) the figures and the output schedule of the record.
+  void begin(const Eigen::VectorXd& y, const RestartRecord* resume);
+  // Steps until the end time or a stop request.
+  void run(Eigen::VectorXd& y);
+  // The status and the figures at the end, written to the file.
+  SimulationReport finish();
+  // A failure: the status and the figures so far, written; the file closed.
+  SimulationReport fail(const std::exception& e);
+
+ private:
+  double outputTime(long k) const {
+    return std::min(settings_.end_time, k * settings_.output_interval);
+  }
+  void step(BdfIntegrator& integ, ApproachControl& approach, Eigen::VectorXd& y);
+  void account(const BdfIntegrator& integ, Clock::time_point s0);
+
+  MultibodySystem& system_;
+  const SimulationSettings& settings_;
+  ResultWriter& writer_;
+  SimulationReport report_;
+  Clock::time_point start_, last_progress_;
+  long nOut_ = 1, nextOut_ = 1;
+  int phase_ = 0;  // 0 before contact, 1 during, 2 after
+  double t_ = 0.0, tPrev_ = 0.0;
+  SolverCounts before_;  // of the parts of the run before a restart
+  double wallBefore_ = 0.0;
+  IntegratorStats last_;
+};
+
+void TimeLoop::begin(const Eigen::VectorXd& y, const RestartRecord* resume) {
+  if (resume) {
+    t_ = resume->time;
+    restoreFigures(resume->figures, report_.figures, phase_, wallBefore_);
+    before_ = report_.figures.solver;
+    // The next regular output strictly after the record's row.
+    nextOut_ = static_cast<long>(std::floor(t_ / settings_.output_interval * (1.0 + 1e-12))) + 1;
+  } else {
+    writer_.append(outputSample(system_, 0.0, y));
+  }
+  tPrev_ = t_;
+}
+
+void TimeLoop::run(Eigen::VectorXd& y) {
+  BdfIntegrator integ(system_, t_, y, settings_.integrator);
+  integ.setStopTime(settings_.end_time);
+  // Approach control: bodies that swing into contact from afar must not step over it. With
+  // the contact pairs' box gap d and its closing speed s (from the last two steps), the
+  // step is limited to d / (2 s) while the boxes are apart, and to the time in which the
+  // surfaces move by 1 % of the contact surface's size once they overlap, until a contact
+  // point is active (then CVODE's own steps resolve the contact). Without pairs: nothing.
+  ApproachControl approach(system_, settings_.end_time);
+  while (t_ < settings_.end_time && nextOut_ <= nOut_) {
+    if (interruptRequested()) {
+      report_.interrupted = true;
+      break;
+    }
+    step(integ, approach, y);
+  }
+}
+
+void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::VectorXd& y) {
+  RunFigures& f = report_.figures;
+  const Clock::time_point s0 = Clock::now();
+  if (approach.active()) approach.update(integ, t_);
+  t_ = integ.step();
+  const double maxBefore = f.max_contact_force;
+  const bool contact = contactAtStepEnd(system_, f);
+  if (f.max_contact_force > maxBefore) {
+    f.max_contact_force_time = t_;
+    if (writer_.wantsPeaks())
+      writer_.recordPeak(t_, f.max_contact_force, bodySamples(system_, integ.currentState()));
+  }
+  checkRepresentable(system_, t_);
+  std::vector<double> times;  // the regular outputs inside this step
+  while (nextOut_ <= nOut_ && outputTime(nextOut_) <= t_ * (1.0 + 1e-14))
+    times.push_back(outputTime(nextOut_++));
+  addContactOutputs(settings_.contact_output_interval, contact || phase_ == 1, tPrev_, t_, times);
+  writeOutputs(integ, system_, writer_, times, t_, y);
+  if (contact && f.contact_begin < 0.0) f.contact_begin = 0.5 * (tPrev_ + t_);
+  if (!contact && phase_ == 1) f.contact_end = 0.5 * (tPrev_ + t_);
+  if (contact)
+    phase_ = 1;
+  else if (phase_ == 1)
+    phase_ = 2;
+  tPrev_ = t_;
+  writer_.flushIfDue();
+  account(integ, s0);
+}
+
+// The step's wall time, steps and right-hand sides into its phase; the figures so far to the
+// restart record; progress on stderr.
+void TimeLoop::account(const BdfIntegrator& integ, Clock::time_point s0) {
+  RunFigures& f = report_.figures;
+  const IntegratorStats now = integ.stats();
+  PhaseFigures& ps = phase_ == 0 ? f.before : phase_ == 1 ? f.during : f.after;
+  const Clock::time_point s1 = Clock::now();
+  ps.wall_s += seconds(s0, s1);
+  ps.steps += now.steps - last_.steps;
+  ps.rhs_evals +=
+      (now.rhs_evals + now.jacobian_rhs_evals) - (last_.rhs_evals + last_.jacobian_rhs_evals);
+  last_ = now;
+  f.solver = sumOf(before_, now);
+  writer_.setRunFigures(restartFigures(f, phase_, wallBefore_ + seconds(start_, s1)));
+  if (settings_.verbosity > 0 && seconds(last_progress_, s1) >= settings_.progress_interval) {
+    last_progress_ = s1;
+    printProgress(settings_, t_, now, seconds(start_, s1));
+  }
+}
+
+SimulationReport TimeLoop::finish() {
+  RunFigures& f = report_.figures;
+  f.final_time = t_;
+  f.wall_time_s = wallBefore_ + seconds(start_, Clock::now());
+  if (report_.interrupted) {
+    f.status = Str() << "interrupted by " << interruptSignalName() << " at t = " << t_ << " s";
+  } else {
+    report_.completed = true;
+    f.status = "completed";
+  }
+  countSearches(system_, f);
+  writeRunFigures(writer_.file(), f);
+  writer_.flush();
+  return report_;
+}
+
+SimulationReport TimeLoop::fail(const std::exception& e) {
+  RunFigures& f = report_.figures;
+  f.final_time = t_;
+  f.wall_time_s = wallBefore_ + seconds(start_, Clock::now());
+  f.status = Str() << "failed at t = " << t_ << " s: " << e.what();
+  countSearches(system_, f);
+  writeRunFigures(writer_.file(), f);
+  writer_.close();
+  return report_;
+}
+
 }  // namespace
 
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
@@ -258,104 +313,16 @@ SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
   FFRIGA_CHECK(
       settings.end_time > 0.0 && settings.output_interval > 0.0,
       "end time " << settings.end_time << ", output interval " << settings.output_interval);
-  SimulationReport report;
-  const Clock::time_point start = Clock::now();
+  TimeLoop loop(system, settings, writer);
   Eigen::VectorXd y = y0;
   system.normalize(y.data());
-  const long nOut =
-      std::max(1L, std::lround(std::ceil(settings.end_time / settings.output_interval - 1e-9)));
-  long nextOut = 1;
-  auto outputTime = [&](long k) {
-    return std::min(settings.end_time, k * settings.output_interval);
-  };
-  int phase = 0;  // 0 before contact, 1 during, 2 after
-  double t = 0.0;
-  IntegratorStats before;  // of the parts of the run before a restart
-  double wallBefore = 0.0;
-  if (resume) {
-    t = resume->time;
-    restoreFigures(*resume, report, phase, before, wallBefore);
-    // The next regular output strictly after the record's row.
-    nextOut = static_cast<long>(std::floor(t / settings.output_interval * (1.0 + 1e-12))) + 1;
-  } else {
-    writer.append(0.0, y, system);
-  }
-  Clock::time_point lastProgress = start;
+  loop.begin(y, resume);
   try {
-    BdfIntegrator integ(system, t, y, settings.integrator);
-    integ.setStopTime(settings.end_time);
-    IntegratorStats last;
-    double tPrev = t;
-    // Approach control: bodies that swing into contact from afar must not step over it. With
-    // the contact pairs' box gap d and its closing speed s (from the last two steps), the
-    // step is limited to d / (2 s) while the boxes are apart, and to the time in which the
-    // surfaces move by 1 % of the contact surface's size once they overlap, until a contact
-    // point is active (then CVODE's own steps resolve the contact). Without pairs: nothing.
-    ApproachControl approach(system, settings.end_time);
-    while (t < settings.end_time && nextOut <= nOut) {
-      if (interruptRequested()) {
-        report.interrupted = true;
-        break;
-      }
-      const Clock::time_point s0 = Clock::now();
-      if (approach.active()) approach.update(integ, t);
-      t = integ.step();
-      const double maxBefore = report.max_normal_force;
-      const bool contact = contactAtStepEnd(system, report);
-      if (report.max_normal_force > maxBefore) {
-        report.max_force_time = t;
-        writer.recordPeak(t, report.max_normal_force, integ.currentState(), system);
-      }
-      checkRepresentable(system, t);
-      std::vector<double> times;  // the regular outputs inside this step
-      while (nextOut <= nOut && outputTime(nextOut) <= t * (1.0 + 1e-14))
-        times.push_back(outputTime(nextOut++));
-      addContactOutputs(settings.contact_output_interval, contact || phase == 1, tPrev, t, times);
-      writeOutputs(integ, system, writer, times, t, y);
-      if (contact && report.contact_begin < 0.0) report.contact_begin = 0.5 * (tPrev + t);
-      if (!contact && phase == 1) report.contact_end = 0.5 * (tPrev + t);
-      if (contact)
-        phase = 1;
-      else if (phase == 1)
-        phase = 2;
-      tPrev = t;
-      writer.flushIfDue();
-      const IntegratorStats now = integ.stats();
-      PhaseStats& ps = phase == 0 ? report.before : phase == 1 ? report.during : report.after;
-      const Clock::time_point s1 = Clock::now();
-      ps.wall_s += seconds(s0, s1);
-      ps.steps += now.steps - last.steps;
-      ps.rhs_evals +=
-          (now.rhs_evals + now.jacobian_rhs_evals) - (last.rhs_evals + last.jacobian_rhs_evals);
-      last = now;
-      report.stats = sumOf(before, now);
-      writer.setRunFigures(runFigures(report, phase, wallBefore + seconds(start, s1)));
-      if (settings.verbosity > 0 && seconds(lastProgress, s1) >= settings.progress_interval) {
-        lastProgress = s1;
-        printProgress(settings, t, now, seconds(start, s1));
-      }
-    }
-    report.final_time = t;
-    report.wall_time_s = wallBefore + seconds(start, Clock::now());
-    if (report.interrupted) {
-      report.status = Str() << "interrupted by " << interruptSignalName() << " at t = " << t << " s";
-    } else {
-      report.completed = true;
-      report.status = "completed";
-    }
-    countSearches(system, report);
-    writeStatistics(writer, report);
-    writer.flush();
+    loop.run(y);
+    return loop.finish();
   } catch (const std::exception& e) {
-    report.final_time = t;
-    report.wall_time_s = wallBefore + seconds(start, Clock::now());
-    report.status = Str() << "failed at t = " << t << " s: " << e.what();
-    countSearches(system, report);
-    writeStatistics(writer, report);
-    writer.close();
-    throw ComputeError(report.status);
+    throw ComputeError(loop.fail(e).figures.status);
   }
-  return report;
 }
 
 }  // namespace ffriga

@@ -16,6 +16,7 @@
 
 #include "runtime/integration/bdf_integrator.h"
 #include "runtime/output/result_writer.h"
+#include "runtime/output/run_figures.h"
 #include "runtime/simulation/interrupt.h"
 #include "runtime/system/multibody_system.h"
 
@@ -31,31 +32,11 @@ struct SimulationSettings {
   double progress_interval = 1.0;  // s of wall time between progress lines
 };
 
-struct PhaseStats {
-  double wall_s = 0.0;
-  long steps = 0;
-  long rhs_evals = 0;  // including those of difference-quotient Jacobians
-};
-
+// The run's figures (runtime/output/run_figures.h) and how it ended.
 struct SimulationReport {
-  std::string status;  // as written to the file
+  RunFigures figures;  // status, times, headline figures, solver counts, phases
   bool completed = false;
   bool interrupted = false;
-  double final_time = 0.0;  // s
-  double wall_time_s = 0.0;
-  IntegratorStats stats;
-  PhaseStats before, during, after;
-  double max_normal_force = 0.0;  // N, over the steps and contact pairs
-  double max_force_time = -1.0;   // s, the end of the step where it was seen (-1: none)
-  // Contact duration, from the first to the last step with an active contact point: each
-  // end is the midpoint between the last step without and the first step with contact
-  // (s; negative when there was no contact).
-  double contact_begin = -1.0;
-  double contact_end = -1.0;
-  // Closest-point searches of the collocation points over all pairs in this invocation,
-  // and those the clearance bound made unnecessary (runtime/contact/contact_pair.h).
-  long long contact_searches = 0;
-  long long contact_searches_avoided = 0;
 };
 
 // Runs from (0, y0) to settings.end_time. Integration failures are recorded in the file and

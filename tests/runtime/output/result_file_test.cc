@@ -4,6 +4,7 @@
 
 #include "runtime/bodies/floating_body.h"
 #include "runtime/output/result_writer.h"
+#include "runtime/simulation/output_sampler.h"
 #include "runtime/simulation/simulation.h"
 #include "tests/support/synthetic_bodies.h"
 
@@ -65,7 +66,7 @@ TEST_CASE("result file: round trip of a free fall", "[result]") {
   const std::string path = "result_roundtrip_test.h5";
   FallingBody sys(1e9);
   {
-    ResultWriter w(path, sys, "unit test", "scene: none\n");
+    ResultWriter w(path, outputLayout(sys), "unit test", "scene: none\n", FlushConfig{});
     const SimulationReport r = simulate(sys, initialState(), settings(), w);
     REQUIRE(r.completed);
     w.close();
@@ -98,7 +99,7 @@ TEST_CASE("result file: an interrupted run leaves a readable file", "[result]") 
   clearInterrupt();
   FallingBody sys(0.2);
   {
-    ResultWriter w(path, sys, "unit test", "");
+    ResultWriter w(path, outputLayout(sys), "unit test", "", FlushConfig{});
     const SimulationReport r = simulate(sys, initialState(), settings(), w);
     REQUIRE(r.interrupted);
     REQUIRE_FALSE(r.completed);

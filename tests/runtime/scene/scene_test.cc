@@ -13,6 +13,7 @@
 #include "common/splines/refinement.h"
 #include "common/input/schemas.h"
 #include "runtime/scene/scene.h"
+#include "runtime/simulation/output_sampler.h"
 #include "runtime/bodies/quasi_static_rule.h"
 #include "tests/support/surface_fixtures.h"
 
@@ -131,11 +132,11 @@ double runSpheres(const FlexibleBodySid& sid, double endTime, double rtol, Simul
   scene.settings.integrator.rtol = rtol;
   scene.settings.integrator.linear_solver = solver;
   const std::string path = file;
-  ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
+  ResultWriter writer(path, outputLayout(*scene.system), "unit test", scene.doc.text, FlushConfig{});
   r = simulate(*scene.system, scene.y0, scene.settings, writer);
   writer.close();
   std::remove(path.c_str());
-  return r.wall_time_s;
+  return r.figures.wall_time_s;
 }
 
 std::string errorOf(const std::string& text, const FlexibleBodySid& sid) {
@@ -162,13 +163,13 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
   REQUIRE(scene.system->numContacts() == 1);
   scene.settings.verbosity = 0;
   const std::string path = "scene_test_result.h5";
-  ResultWriter writer(path, *scene.system, "unit test", scene.doc.text);
+  ResultWriter writer(path, outputLayout(*scene.system), "unit test", scene.doc.text, FlushConfig{});
   const SimulationReport r = simulate(*scene.system, scene.y0, scene.settings, writer);
   writer.close();
   REQUIRE(r.completed);
-  REQUIRE(r.max_normal_force > 0.0);
-  REQUIRE(r.during.steps > 0);
-  REQUIRE(r.after.steps > 0);
+  REQUIRE(r.figures.max_contact_force > 0.0);
+  REQUIRE(r.figures.during.steps > 0);
+  REQUIRE(r.figures.after.steps > 0);
   // The final state: velocities exchanged (equal masses, conservative penalty force, no
   // damping), linear momentum zero throughout (equal and opposite forces).
   h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
@@ -187,8 +188,8 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
   const double vLower = lastRow("bodies/lower/velocity", 3)[1];
   const double vUpper = -lastRow("bodies/upper/velocity", 3)[1];
   const double fEnd = lastRow("contacts/lower-upper/normal_force", 1)[0];
-  INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", final V " << vLower
-                    << ", " << vUpper << " wall " << r.wall_time_s);
+  INFO("max force " << r.figures.max_contact_force << " N, steps " << r.figures.solver.steps << ", final V " << vLower
+                    << ", " << vUpper << " wall " << r.figures.wall_time_s);
   REQUIRE(fEnd == 0.0);
   // Momentum: BDF keeps linear invariants exactly up to the Newton tolerance; 1e-9 m/s.
   REQUIRE(std::abs(vLower + vUpper) < 1e-9);
@@ -202,11 +203,11 @@ TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[sce
 TEST_CASE("scene: flexible axisymmetric spheres collide and separate", "[scene]") {
   SimulationReport r;
   runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, r, "scene_test_flexible.h5");
-  INFO("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", wall "
-                    << r.wall_time_s << " s");
+  INFO("max force " << r.figures.max_contact_force << " N, steps " << r.figures.solver.steps << ", wall "
+                    << r.figures.wall_time_s << " s");
   REQUIRE(r.completed);
-  REQUIRE(r.max_normal_force > 0.0);
-  REQUIRE(r.after.steps > 0);
+  REQUIRE(r.figures.max_contact_force > 0.0);
+  REQUIRE(r.figures.after.steps > 0);
 }
 
 TEST_CASE("scene: structured and dense Newton matrices give the same impact", "[scene]") {
@@ -217,12 +218,12 @@ TEST_CASE("scene: structured and dense Newton matrices give the same impact", "[
              LinearSolverKind::kAuto);
   runSpheres(flexibleSphere2d(0.01, 40), 6.0e-4, 1e-6, rd, "scene_test_dense.h5",
              LinearSolverKind::kEigenDense);
-  INFO("structured: " << rs.max_normal_force << " N, " << rs.stats.steps << " steps; dense: "
-                      << rd.max_normal_force << " N, " << rd.stats.steps << " steps");
+  INFO("structured: " << rs.figures.max_contact_force << " N, " << rs.figures.solver.steps << " steps; dense: "
+                      << rd.figures.max_contact_force << " N, " << rd.figures.solver.steps << " steps");
   REQUIRE(rs.completed);
   REQUIRE(rd.completed);
-  CHECK(std::abs(rs.max_normal_force / rd.max_normal_force - 1.0) <= 1e-5);
-  CHECK(std::abs((rs.contact_end - rs.contact_begin) / (rd.contact_end - rd.contact_begin) - 1.0) <=
+  CHECK(std::abs(rs.figures.max_contact_force / rd.figures.max_contact_force - 1.0) <= 1e-5);
+  CHECK(std::abs((rs.figures.contact_end - rs.figures.contact_begin) / (rd.figures.contact_end - rd.figures.contact_begin) - 1.0) <=
         1e-3);  // the ends are step midpoints: steps near separation are ~1e-3 of the duration
 }
 
@@ -400,11 +401,11 @@ TEST_CASE("scene: quasi-static rule, its keys and its bad input", "[scene]") {
 TEST_CASE("benchmark: flexible axisymmetric spheres, nq = 92", "[.benchmark]") {
   SimulationReport r;
   runSpheres(flexibleSphere2d(0.01, 92), 6.0e-4, 1e-6, r, "scene_test_benchmark.h5");
-  WARN("max force " << r.max_normal_force << " N, steps " << r.stats.steps << ", rhs "
-                    << r.stats.rhs_evals << ", jacobians " << r.stats.jacobian_evals << ", setups "
-                    << r.stats.linear_setups << ", wall " << r.wall_time_s << " s (before "
-                    << r.before.wall_s << ", during " << r.during.wall_s << ", after "
-                    << r.after.wall_s << ")");
+  WARN("max force " << r.figures.max_contact_force << " N, steps " << r.figures.solver.steps << ", rhs "
+                    << r.figures.solver.rhs_evals << ", jacobians " << r.figures.solver.jacobian_evals << ", setups "
+                    << r.figures.solver.linear_setups << ", wall " << r.figures.wall_time_s << " s (before "
+                    << r.figures.before.wall_s << ", during " << r.figures.during.wall_s << ", after "
+                    << r.figures.after.wall_s << ")");
 }
 
 TEST_CASE("scene: bad input names file, line and key", "[scene]") {

@@ -1,0 +1,101 @@
+// What the outputs of a run see of the multibody system: its layout once (the bodies with
+// their SIDs, the contact pairs, joints, force elements and sensors, by name) and a sample
+// at every output row (the state in the result file's terms, the pairs', joints' and force
+// elements' quantities, the energies). The simulation forms both from the system
+// (runtime/simulation/output_sampler.h) and hands them to the outputs through one
+// interface (runtime/output/output_sink.h); the outputs know nothing of the system.
+// Units as in the result file (schemas/result_format.md): SI.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "common/sid/sid.h"
+
+namespace ffriga {
+
+// One body of the system as the outputs name and draw it.
+struct BodyLayout {
+  std::string name;
+  std::shared_ptr<const FlexibleBodySid> sid;  // model, mesh, stress lines, geometry
+  int nq = 0;                                  // elastic coordinates (0: rigid or frozen)
+  int quasi_static_modes = 0;                  // of them quasi-static
+  double quasi_static_cutoff_hz = 0.0;         // Hz, 0 if none
+};
+
+// A contact pair, a joint or a force element between two bodies (or a body and the ground).
+struct ConnectionLayout {
+  std::string name;
+  std::string kind;  // joint type, force element kind ("contact" for pairs)
+  std::string end_a, end_b;  // body names (pairs) or BODY.MARKER / ground (joints, forces)
+  double penalty_factor = 0.0;  // contact pairs: c_p, N/m^3
+};
+
+struct SensorLayout {
+  std::string name;
+  std::string marker;  // BODY.MARKER
+};
+
+struct OutputLayout {
+  std::vector<BodyLayout> bodies;
+  std::vector<ConnectionLayout> contacts, joints, force_elements;
+  std::vector<SensorLayout> sensors;
+  int state_size = 0;  // entries of the state vector y
+};
+
+// One body at one moment: the result file's rows (position and velocity of the frame
+// origin, orientation, elastic coordinates) and the pose that maps body points into the
+// contact space (3D, or the meridian plane of an axisymmetric body): world = origin + A x.
+struct BodySample {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();          // m, inertial
+  Eigen::Vector4d orientation = Eigen::Vector4d(1, 0, 0, 0);   // unit quaternion
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();          // m/s, body components
+  Eigen::Vector3d angular_velocity = Eigen::Vector3d::Zero();  // rad/s, body components
+  Eigen::VectorXd q, qdot;  // max(nq, 1) entries (a zero for rigid bodies)
+  Eigen::MatrixXd A;        // d x d, body -> world
+  Eigen::VectorXd origin;   // d, m
+  Eigen::VectorXd pose_q;   // nq: the pose's elastic coordinates (empty if none)
+};
+
+struct ContactSample {
+  double normal_force = 0.0;                        // N, on the pair's first body
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, inertial
+  double max_penetration = 0.0;                     // m
+  double active_points = 0.0;                       // count
+  double projection_failures = 0.0;                 // count
+};
+
+struct JointSample {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, on end b's body, inertial
+  Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N m, about end b's marker point
+  double violation = 0.0;                            // m or 1
+};
+
+struct ForceElementSample {
+  double length = 0.0, rate = 0.0, tension = 0.0, energy = 0.0;  // m, m/s, N, J
+};
+
+struct SensorSample {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  // m, inertial
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  // m/s, inertial
+};
+
+struct EnergySample {
+  double kinetic = 0.0, elastic = 0.0, contact = 0.0, gravity = 0.0, force_elements = 0.0;  // J
+};
+
+struct OutputSample {
+  double time = 0.0;  // s
+  Eigen::VectorXd state;  // the full state vector y (the restart record keeps it)
+  std::vector<BodySample> bodies;
+  std::vector<ContactSample> contacts;
+  std::vector<JointSample> joints;
+  std::vector<ForceElementSample> force_elements;
+  std::vector<SensorSample> sensors;
+  EnergySample energy;
+};
+
+}  // namespace ffriga
