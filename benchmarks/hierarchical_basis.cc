@@ -123,8 +123,8 @@ int main(int argc, char** argv) {
         ffriga::loadBodyConfig(configPath(base + "_h" + std::to_string(r.n)));
     const ffriga::BodyConfig g =
         ffriga::loadBodyConfig(configPath(base + "_g" + std::to_string(r.n)));
-    const int nh = ffriga::countDofs(ffriga::bodySpace(h), h.model).ndof;
-    const int ng = ffriga::countDofs(ffriga::bodySpace(g), g.model).ndof;
+    const int nh = ffriga::countDofs(ffriga::bodySpace(h), h.model == ffriga::ModelKind::kAxisymmetric).ndof;
+    const int ng = ffriga::countDofs(ffriga::bodySpace(g), g.model == ffriga::ModelKind::kAxisymmetric).ndof;
     std::printf("  %-9s %5d %12d %12d %7.3f   %12d %12d %7.3f\n", r.stem, r.n, nh, ng,
                 double(nh) / ng, r.paper_h, r.paper_g, double(r.paper_h) / r.paper_g);
     json += std::string(first ? "" : ", ") + "{\"model\": \"" + r.stem +

@@ -4,30 +4,19 @@
 //   igaprep BODY.yaml                  (geometry summary only)
 //   igaprep --info FILE.sid.h5         (summary of a SID file)
 //
-// Pipeline (preproc/body_reduction.h): geometry and global refinement, elasticity
-// assembly, Craig-Bampton or modal reduction in a Buckens or tangent frame, SID invariants,
-// contact surface and markers, then the SID file (common/sid/sid_file.h), written atomically.
-//
-// Without -o: the geometry summary: degrees, elements and control points per direction,
-// per hierarchy level the elements and active functions, and the displacement DOFs
-//   ndof = s * (active functions - points tied to a coincident one of the same level)
-//          - (axisymmetric) distinct control points on the axis (u_r = 0 there).
-#include <sys/resource.h>
-
-#include <chrono>
+// The phases of a run: preproc/igaprep_run.h; the pipeline: preproc/body_preprocessor.h
+// (geometry and global refinement, elasticity assembly, Craig-Bampton or modal reduction in
+// a Buckens or tangent frame, SID invariants, contact surface and markers), then the SID
+// file (common/sid/sid_file.h), written atomically. Without -o: the geometry summary
+// (preproc/igaprep_report.h).
 #include <cmath>
 #include <cstdlib>
-#include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "common/base/cli.h"
-#include "common/base/output_path.h"
 #include "common/base/provenance.h"
-#include "common/sid/sid_file.h"
-#include "common/base/version.h"
-#include "preproc/input/body_config.h"
-#include "preproc/body_reduction.h"
-#include "preproc/input/size_estimate.h"
+#include "preproc/igaprep_run.h"
 
 namespace {
 
@@ -61,152 +50,50 @@ Body files: schemas/body.schema.json; examples in configs/bodies/.
 Exit codes: 0 success, 2 bad input or usage, 1 failure while computing.
 )";
 
-const char* kDirectionNames[3] = {"xi", "eta", "zeta"};
 
-double peakMemoryMiB() {
-  rusage u{};
-  if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
-  return u.ru_maxrss / 1024.0;  // Linux: kilobytes
+double parseMaxMemory(const char* v) {
+  char* end = nullptr;
+  const double gib = std::strtod(v, &end);
+  if (*end != '\0' || !(gib > 0.0) || !std::isfinite(gib)) {
+    throw ffriga::UsageError(ffriga::Str() << "--max-memory expects a number of GiB > 0, found '"
+                                           << v << "'");
+  }
+  return gib;
 }
 
-// User + system CPU time of this process (all threads), s: next to the wall time it shows
-// how much of the machine the run had.
-double cpuSeconds() {
-  rusage u{};
-  if (getrusage(RUSAGE_SELF, &u) != 0) return -1.0;
-  return u.ru_utime.tv_sec + u.ru_stime.tv_sec + 1e-6 * (u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
-void printGeometry(const ffriga::BodyConfig& c, const ffriga::NurbsPatch& patch, int verbosity) {
-  if (verbosity == 0) return;
-  const int d = patch.paramDim();
-  std::printf("igaprep %s: body '%s' from %s\n", ffriga::kVersion, c.name.c_str(),
-              c.source.path.c_str());
-  std::printf("  model      %s, geometry %s\n", ffriga::toString(c.model), c.geometry_type.c_str());
-  std::printf("  material   E = %.6g Pa, nu = %.6g, rho = %.6g kg/m^3\n", c.material.youngs_modulus,
-              c.material.poisson_ratio, c.material.density);
-  std::printf("  %-9s %7s %9s %15s\n", "direction", "degree", "elements", "control points");
-  for (int a = 0; a < d; ++a) {
-    std::printf("  %-9s %7d %9d %15d\n", kDirectionNames[a], patch.degree(a),
-                patch.knots(a).numElements(), patch.numBasis(a));
+// The command line's run: --info FILE alone, or one body file with or without -o.
+ffriga::IgaprepConfig runConfig(const ffriga::CommonOptions& o, ffriga::IgaprepConfig c) {
+  c.output = o.output;
+  c.sets = o.sets;
+  c.verbosity = o.verbosity;
+  if (!c.info.empty()) {
+    if (!o.positional.empty() || !o.output.empty() || !o.sets.empty())
+      throw ffriga::UsageError("--info takes one SID file and no other arguments");
+    return c;
   }
-  std::printf("  %-9s %7s %9d %15d   (level 0)\n", "total", "", patch.numElements(),
-              patch.numControlPoints());
-  if (verbosity >= 2) {
-    for (int a = 0; a < d; ++a) {
-      std::printf("  knots %s:", kDirectionNames[a]);
-      for (double u : patch.knots(a).knots()) std::printf(" %.6g", u);
-      std::printf("\n");
-    }
+  if (o.positional.size() != 1) {
+    throw ffriga::UsageError(ffriga::Str() << "expected one body file, found "
+                                           << o.positional.size() << " arguments (see --help)");
   }
-}
-
-void printHierarchy(const ffriga::BodyConfig& c, const ffriga::HierarchicalSpace& space) {
-  const int s = space.spaceDim();
-  if (c.global_reference) {
-    std::printf(
-        "  global reference of a %d-level hierarchy: knot lines of every level inserted "
-        "across the domain\n",
-        c.hierarchy.levels);
-  }
-  std::printf("  hierarchy  %d level(s), %s\n", space.numLevels(),
-              space.truncated() ? "truncated (THB)" : "non-truncated (HB)");
-  std::printf("  %-6s %9s %18s  %s\n", "level", "elements", "active functions", "region");
-  for (int l = 0; l < space.numLevels(); ++l) {
-    std::printf("  %-6d %9d %18d  ", l, space.numElementsOnLevel(l), space.numFunctionsOnLevel(l));
-    const ffriga::ParamBox box = space.region(l);
-    for (int a = 0; a < space.paramDim(); ++a)
-      std::printf("%s[%.9g, %.9g]", a ? " x " : "", box.lower[a], box.upper[a]);
-    std::printf("\n");
-  }
-  std::printf("  %-6s %9d %18d\n", "total", space.numElements(), space.numFunctions());
-  const ffriga::DofCount n = ffriga::countDofs(space, c.model);
-  std::printf("  coincident control points: %d groups (%d points tied to another)\n", n.groups,
-              n.tied);
-  if (c.model == ffriga::ModelKind::kAxisymmetric) {
-    std::printf("  distinct control points on the axis (u_r = 0): %d\n", n.on_axis);
-  }
-  std::printf("  displacement DOFs: %d x %d functions = %d before tying; ndof = %d\n", s,
-              space.numFunctions(), s * space.numFunctions(), n.ndof);
-}
-
-void printSidSummary(const ffriga::FlexibleBodySid& s, const std::string& path) {
-  std::printf("SID file %s (%s)\n", path.c_str(), s.created_by.c_str());
-  std::printf("  body                 %s (%s, %dD data), from %s\n", s.name.c_str(),
-              s.model.c_str(), s.space_dim, s.input_path.c_str());
-  std::printf("  ndof                 %d\n", s.ndof);
-  std::printf("  elements / levels    %d / %d\n", s.n_elements, s.nlvl);
-  std::printf("  reduction            %s, frame %s\n", s.reduction.c_str(), s.frame.c_str());
-  std::printf("  nq                   %d = %d normal + %d constraint - %d rigid\n", s.nq(),
-              s.normal_modes, s.constraint_modes, s.rigid_modes_dropped);
-  std::printf("  interface points     %d\n", s.n_interface_control_points);
-  if (s.nq() > 0) {
-    std::printf("  frequencies          %.6g .. %.6g Hz\n", s.frequencies_hz.minCoeff(),
-                s.frequencies_hz.maxCoeff());
-    int damped = 0;
-    for (int i = 0; i < s.nq(); ++i) damped += s.damping_ratio(i) > 0.0;
-    std::printf("  damped modes         %d of %d\n", damped, s.nq());
-  }
-  std::printf("  material             E = %.6g Pa, nu = %.6g, rho = %.6g kg/m^3\n",
-              s.material.youngs_modulus, s.material.poisson_ratio, s.material.density);
-  std::printf("  geometry             %s", s.geometry.type.c_str());
-  if (s.geometry.radius > 0.0) std::printf(", radius %.6g m", s.geometry.radius);
-  if (s.geometry.length > 0.0) std::printf(", length %.6g m", s.geometry.length);
-  std::printf("\n");
-  if (s.mesh.empty()) {
-    std::printf("  visualisation mesh   none\n");
-  } else {
-    std::printf("  visualisation mesh   %d points, %d cells (%d per element and direction)\n",
-                static_cast<int>(s.mesh.samples.points.rows()), static_cast<int>(s.mesh.cells.rows()),
-                s.mesh.subdivisions);
-  }
-  for (const auto& l : s.stress_lines) {
-    std::printf("  stress line          '%s': %d points\n", l.name.c_str(),
-                static_cast<int>(l.samples.points.rows()));
-  }
-  std::printf("  mass                 %.10g kg\n", s.mass);
-  std::printf("  frame origin         (%.6g, %.6g, %.6g) m\n", s.frame_origin(0), s.frame_origin(1),
-              s.frame_origin(2));
-  std::printf("  inertia diag         (%.6g, %.6g, %.6g) kg m^2\n", s.inertia(0, 0),
-              s.inertia(1, 1), s.inertia(2, 2));
-  std::printf("  control points       %d\n", static_cast<int>(s.control_points.rows()));
-  for (const auto& c : s.surfaces) {
-    std::printf("  contact surface      '%s': %zu elements, %zu functions, %d collocation points\n",
-                c.name.c_str(), c.element_level.size(), c.functions.size(),
-                static_cast<int>(c.collocation_points.rows()));
-  }
-  for (const auto& m : s.markers) std::printf("  marker               '%s'\n", m.name.c_str());
-  std::printf("  preprocessing time   %.3f s\n", s.preprocessing_time_s);
-  for (const auto& [stage, t] : s.stage_times_s)
-    std::printf("    %-18s %.3f s\n", stage.c_str(), t);
+  c.body_file = o.positional[0];
+  return c;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   return ffriga::runProgram("igaprep", [&]() {
-    const auto start = std::chrono::steady_clock::now();
-    std::string info;
-    double maxMemoryGiB = 0.0;  // 0: this machine's physical memory
+    ffriga::IgaprepConfig config;
     const ffriga::CommonOptions o =
         ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
           const std::string a = av[i];
-          if (a == "--info") {
-            if (i + 1 >= ac) throw ffriga::UsageError("option --info needs a SID file");
-            info = av[i + 1];
-            return 2;
-          }
-          if (a == "--max-memory") {
-            if (i + 1 >= ac) throw ffriga::UsageError("option --max-memory needs a value (GiB)");
-            char* end = nullptr;
-            maxMemoryGiB = std::strtod(av[i + 1], &end);
-            if (*end != '\0' || !(maxMemoryGiB > 0.0) || !std::isfinite(maxMemoryGiB)) {
-              throw ffriga::UsageError(ffriga::Str() << "--max-memory expects a number of GiB > 0, "
-                                                     << "found '" << av[i + 1] << "'");
-            }
-            return 2;
-          }
-          return 0;
+          if (a != "--info" && a != "--max-memory") return 0;
+          if (i + 1 >= ac)
+            throw ffriga::UsageError(a == "--info" ? "option --info needs a SID file"
+                                                   : "option --max-memory needs a value (GiB)");
+          if (a == "--info") config.info = av[i + 1];
+          if (a == "--max-memory") config.max_memory_gib = parseMaxMemory(av[i + 1]);
+          return 2;
         });
     if (o.help) {
       std::cout << kUsage;
@@ -216,77 +103,8 @@ int main(int argc, char** argv) {
       std::cout << ffriga::versionLine("igaprep") << "\n";
       return 0;
     }
-    if (!info.empty()) {
-      if (!o.positional.empty() || !o.output.empty() || !o.sets.empty())
-        throw ffriga::UsageError("--info takes one SID file and no other arguments");
-      printSidSummary(ffriga::readSid(info), info);
-      return 0;
-    }
-    if (o.positional.size() != 1) {
-      throw ffriga::UsageError(ffriga::Str() << "expected one body file, found "
-                                             << o.positional.size() << " arguments (see --help)");
-    }
-    ffriga::applyThreads(o.threads);
-    if (!o.output.empty()) {  // before any work
-      ffriga::checkOutputWritable(o.output, "-o");
-      ffriga::refuseInputAsOutput(o.output, "-o", o.positional[0], "the body file");
-    }
-    const double limit =
-        maxMemoryGiB > 0.0 ? maxMemoryGiB * 1024.0 * 1024.0 * 1024.0 : ffriga::physicalMemoryBytes();
-    // The size estimate is checked while loading, before the refinement allocates.
-    const ffriga::BodyConfig config = ffriga::loadBodyConfig(o.positional[0], limit, o.sets);
-    if (o.verbosity > 1) {
-      const ffriga::SizeEstimate size =
-          config.global_reference
-              ? ffriga::estimateGlobalReferenceSize(config, ffriga::refinedPatch(config))
-              : ffriga::estimateSize(config);
-      std::fprintf(stderr,
-                   "igaprep: size estimate: %.4g control points, %.4g DOFs, %.4g entries of K, "
-                   "at least %.4g GiB (limit %.4g GiB)\n",
-                   size.control_points, size.dofs, size.nonzeros,
-                   size.bytes / (1024.0 * 1024.0 * 1024.0), limit / (1024.0 * 1024.0 * 1024.0));
-    }
-    if (o.output.empty()) {
-      printGeometry(config, ffriga::refinedPatch(config), o.verbosity);
-      if (o.verbosity > 0) printHierarchy(config, ffriga::bodySpace(config));
-      return 0;
-    }
-    auto log = [&](const std::string& line) {
-      if (o.verbosity > 0) std::cerr << "igaprep: " << line << std::endl;
-    };
-    ffriga::PreprocessSummary summary;
-    ffriga::FlexibleBodySid sid = ffriga::preprocessBody(config, log, &summary);
-    auto elapsed = [&]() {
-      return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    };
-    sid.preprocessing_time_s = elapsed();
-    const double beforeWrite = elapsed();
-    ffriga::writeSid(sid, o.output);
-    const double writeTime = elapsed() - beforeWrite;
-    log(ffriga::Str() << "write: " << o.output << " (" << writeTime << " s)");
-    if (o.verbosity > 0) {
-      std::printf("igaprep %s: %s -> %s\n", ffriga::kVersion, config.source.path.c_str(),
-                  o.output.c_str());
-      std::printf("  %-28s %s, %s frame\n", "model", sid.model.c_str(), sid.frame.c_str());
-      std::printf("  %-28s %d (%d control points, %d tied, %d fixed on the axis)\n", "ndof",
-                  summary.ndof, summary.num_control_points, summary.tied_points,
-                  summary.fixed_dofs);
-      std::printf("  %-28s %d (%d DOFs)\n", "interface control points",
-                  summary.interface_control_points, summary.interface_dofs);
-      std::printf("  %-28s %d = %d normal + %d constraint - %d rigid\n", "nq", sid.nq(),
-                  sid.normal_modes, sid.constraint_modes, sid.rigid_modes_dropped);
-      if (sid.nq() > 0) {
-        std::printf("  %-28s %.6g .. %.6g Hz\n", "frequencies", sid.frequencies_hz.minCoeff(),
-                    sid.frequencies_hz.maxCoeff());
-      }
-      std::printf("  %-28s %.10g kg\n", "mass", sid.mass);
-      for (const auto& [stage, t] : sid.stage_times_s)
-        std::printf("  time %-23s %.3f s\n", stage.c_str(), t);
-      std::printf("  time %-23s %.3f s\n", "write", writeTime);
-      std::printf("  %-28s %.3f s\n", "total wall time", elapsed());
-      std::printf("  %-28s %.3f s\n", "total CPU time", cpuSeconds());
-      std::printf("  %-28s %.1f MiB\n", "peak memory", peakMemoryMiB());
-    }
-    return 0;
+    const ffriga::IgaprepConfig run = runConfig(o, config);
+    if (run.info.empty()) ffriga::applyThreads(o.threads);
+    return ffriga::IgaprepRun(run).run();
   });
 }

@@ -1,5 +1,15 @@
-// The body file of igaprep (schemas/body.schema.json): material, exact geometry and global
-// refinement of one flexible body, read and checked up front. SI units.
+// The body file of igaprep (schemas/body.schema.json): material, exact geometry, refinement,
+// hierarchy, contact region, markers, reduction and visualisation of one flexible body, SI
+// units. Read in two phases, each error naming the file, the YAML line and the key:
+//
+//   read   (body_config.cc) the schema, then every value into BodyConfig, with the checks
+//          the document alone decides (list lengths per parametric direction, knot vectors,
+//          names used twice, keys that need each other);
+//   check  (body_checks.cc) against the geometry the values build: the model against the
+//          patch's dimensions, the size estimate against the memory limit (before anything
+//          large is allocated), the refinement, the hierarchy's boxes (snapped onto the
+//          level grids), faces and regions off degenerate faces, markers and stress lines
+//          inside the body.
 #pragma once
 
 #include <array>
@@ -7,9 +17,10 @@
 #include <string>
 #include <vector>
 
+#include "common/input/yaml_input.h"
 #include "common/splines/hierarchical_space.h"
 #include "common/splines/nurbs_patch.h"
-#include "common/input/yaml_input.h"
+#include "preproc/geometry/body_geometry.h"
 #include "preproc/input/visualisation_config.h"
 
 namespace ffriga {
@@ -18,6 +29,7 @@ enum class ModelKind { kAxisymmetric, kSolid };
 
 // One table from enum to YAML spelling.
 const char* toString(ModelKind model);
+const char* toString(GeometryKind geometry);
 
 struct Material {
   double youngs_modulus = 0.0;  // E, Pa
@@ -59,7 +71,6 @@ struct ReductionConfig {
   std::string frame = "buckens";  // buckens | tangent
   std::string frame_marker;       // tangent frame only
   std::vector<DampingBand> damping;
-  // Damping ratio of a mode of frequency f (Hz): the last band containing f, else 0.
   // Damping ratio of a mode of frequency f_hz on a body whose lowest elastic frequency is
   // f1_hz (the last matching band wins; 0 if none).
   double dampingRatio(double f_hz, double f1_hz) const;
@@ -70,15 +81,10 @@ struct BodyConfig {
   std::string name;
   ModelKind model = ModelKind::kSolid;
   Material material;
-  std::string geometry_type;                // half_disk | sphere | rod | nurbs
-  double geometry_radius = 0.0;             // m: half_disk, sphere, rod (0 otherwise)
-  double geometry_length = 0.0;             // m: rod (0 otherwise)
-  NurbsPatch geometry;                      // the exact, unrefined patch
-  std::vector<int> elevate_degree;          // per parametric direction
-  std::vector<int> insert_knots;            // per direction: knots per non-empty span
-  std::vector<std::vector<double>> insert;  // per direction: explicit knots (after the above)
-  // Hierarchical refinement of the globally refined patch (levels = 1: none). The boxes are
-  // validated and snapped onto the level grids (HierarchicalSpace's box semantics).
+  GeometryConfig geometry;
+  RefinementConfig refinement;  // one entry per parametric direction
+  // Hierarchical refinement of the globally refined patch (levels = 1: none). After the
+  // checks the boxes are snapped onto the level grids (HierarchicalSpace's box semantics).
   HierarchyOptions hierarchy;
   bool global_reference = false;  // hierarchy.as_global_reference
   ContactConfig contact;
@@ -87,42 +93,20 @@ struct BodyConfig {
   VisualisationConfig visualisation;
 };
 
-// Loads, validates against the body schema and checks the semantics (list lengths match
-// the parametric dimension, knot vectors valid, one weight per control point, the model
-// matches the geometry). Throws InputError (file, key, line).
-// memory_limit_bytes: inputs whose size estimate (preproc/input/size_estimate.h) exceeds it are
-// refused before refinement; 0: this machine's physical memory.
-// sets: command-line overrides "KEY=VALUE" (common/input/yaml_overrides.h), applied before the
-// schema check.
+// Reads and checks a body file (both phases of the header comment). Throws InputError
+// (file, line, key). memory_limit_bytes: inputs whose size estimate
+// (preproc/geometry/size_estimate.h) exceeds it are refused before refinement; 0: this
+// machine's physical memory. sets: command-line overrides "KEY=VALUE"
+// (common/input/yaml_overrides.h), applied before the schema check.
 BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes = 0.0,
                           const std::vector<std::string>& sets = {});
 BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes = 0.0);
 
-// The globally refined patch: degree elevation, then uniform knot insertion, then the
-// explicit knots, per direction. Hierarchy boxes refer to this patch's knot coordinates.
+// The read phase alone (no geometry is built).
+BodyConfig readBodyConfig(YamlDocument doc);
+
+// The body's refined patch and spline space (preproc/geometry/body_geometry.h).
 NurbsPatch refinedPatch(const BodyConfig& config);
-
-// The body's spline space: the hierarchical space over refinedPatch() or, with
-// hierarchy.as_global_reference, the tensor space (one level) of its global reference.
 HierarchicalSpace bodySpace(const BodyConfig& config);
-
-// Displacement DOFs of a body space (what igaprep reports as ndof):
-//   ndof = s * (functions - tied) - on_axis,
-// tied: control points that coincide (1e-12 of the body size) with another one of the same
-// level and share its DOFs (collapsed edges, poles, seams; judged on the THB control points,
-// also for an HB space); coincidences across levels
-// occur on regular boundaries (along the axis, where the section is linear in eta, a
-// level-l and a level-(l+1) function can share a control point) and stay distinct DOFs;
-// on_axis (axisymmetric): distinct control points with x = 0, where u_r = 0.
-struct DofCount {
-  int groups = 0;   // groups of tied control points
-  int tied = 0;     // control points tied to another one
-  int on_axis = 0;  // distinct control points on the axis
-  int ndof = 0;
-};
-DofCount countDofs(const HierarchicalSpace& space, ModelKind model);
-// Groups of control points whose DOFs are tied: coincident points of the same level
-// (collapsed edges, poles, seams), read from the THB control points.
-std::vector<std::vector<int>> tiedControlPoints(const HierarchicalSpace& space);
 
 }  // namespace ffriga

@@ -40,18 +40,13 @@ void invertLine(const YamlDocument& doc, const YAML::Node& node, const std::stri
 
 }  // namespace
 
-VisualisationConfig parseVisualisation(const YamlDocument& doc, const YAML::Node& node,
-                                       const NurbsPatch& geometry) {
+VisualisationConfig readVisualisation(const YamlDocument& doc, const YAML::Node& node, int d) {
   VisualisationConfig v;
-  const int d = geometry.paramDim();
-  const int s = static_cast<int>(geometry.points().cols());
   v.subdivisions = d == 2 ? 2 : 1;
   if (!node) return v;
   if (node["subdivisions"]) {
     v.subdivisions = getInt(doc, node["subdivisions"], "visualisation.subdivisions");
   }
-  const Eigen::MatrixXd& P = geometry.points();
-  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
   const YAML::Node lines = node["stress_lines"];
   for (std::size_t i = 0; lines && i < lines.size(); ++i) {
     const std::string key = Str() << "visualisation.stress_lines[" << i << "]";
@@ -63,13 +58,24 @@ VisualisationConfig parseVisualisation(const YamlDocument& doc, const YAML::Node
                          "stress line name '" + line.name + "' is used twice");
       }
     }
-    line.from = parsePoint(doc, lines[i]["from"], key + ".from", s);
-    line.to = parsePoint(doc, lines[i]["to"], key + ".to", s);
+    line.from = parsePoint(doc, lines[i]["from"], key + ".from", d);
+    line.to = parsePoint(doc, lines[i]["to"], key + ".to", d);
     if (lines[i]["points"]) line.points = getInt(doc, lines[i]["points"], key + ".points");
-    invertLine(doc, lines[i], key, geometry, size, &line);
     v.stress_lines.push_back(std::move(line));
   }
   return v;
+}
+
+void invertStressLines(const YamlDocument& doc, const NurbsPatch& geometry,
+                       VisualisationConfig& v) {
+  if (v.stress_lines.empty()) return;
+  const Eigen::MatrixXd& P = geometry.points();
+  const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
+  const YAML::Node lines = doc.root["visualisation"]["stress_lines"];
+  for (std::size_t i = 0; i < v.stress_lines.size(); ++i) {
+    const std::string key = Str() << "visualisation.stress_lines[" << i << "]";
+    invertLine(doc, lines[i], key, geometry, size, &v.stress_lines[i]);
+  }
 }
 
 }  // namespace ffriga

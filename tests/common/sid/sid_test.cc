@@ -12,7 +12,7 @@
 #include "common/sid/hdf5_io.h"
 #include "common/splines/refinement.h"
 #include "common/sid/sid_file.h"
-#include "preproc/body_reduction.h"
+#include "preproc/body_preprocessor.h"
 #include "preproc/geometry/geometry_builders.h"
 #include "preproc/reduction/sid_invariants.h"
 #include "tests/support/test_util.h"

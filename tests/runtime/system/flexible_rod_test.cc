@@ -14,7 +14,7 @@
 
 #include "common/sid/sid_file.h"
 #include "preproc/input/body_config.h"
-#include "preproc/body_reduction.h"
+#include "preproc/body_preprocessor.h"
 #include "preproc/reduction/marker_points.h"
 #include "runtime/integration/bdf_integrator.h"
 #include "runtime/scene/scene.h"

@@ -1,11 +1,10 @@
-#include "preproc/input/size_estimate.h"
+#include "preproc/geometry/size_estimate.h"
 
 #include <unistd.h>
 
 #include <cmath>
 
 #include "common/base/error.h"
-#include "common/input/yaml_input.h"
 
 namespace ffriga {
 
@@ -29,8 +28,7 @@ SizeEstimate fromFunctions(const std::vector<double>& n, const std::vector<doubl
 
 }  // namespace
 
-SizeEstimate estimateSize(const BodyConfig& config) {
-  const NurbsPatch& patch = config.geometry;
+SizeEstimate estimateSize(const NurbsPatch& patch, const RefinementConfig& config) {
   const int d = patch.paramDim();
   std::vector<double> n(d), degree(d);
   for (int a = 0; a < d; ++a) {
@@ -47,7 +45,8 @@ SizeEstimate estimateSize(const BodyConfig& config) {
   return fromFunctions(n, degree, patch.spaceDim());
 }
 
-SizeEstimate estimateGlobalReferenceSize(const BodyConfig& config, const NurbsPatch& refined) {
+SizeEstimate estimateGlobalReferenceSize(const NurbsPatch& refined,
+                                         const HierarchyOptions& hierarchy) {
   const int d = refined.paramDim();
   std::vector<double> n(d), degree(d);
   for (int a = 0; a < d; ++a) {
@@ -57,8 +56,8 @@ SizeEstimate estimateGlobalReferenceSize(const BodyConfig& config, const NurbsPa
     // Level l halves the level l - 1 spans inside its box: as many new knot lines as the
     // box holds level-0 spans times 2^(l - 1), inserted across the whole patch.
     const std::vector<double> breaks = U.breaks();
-    for (int l = 1; l < config.hierarchy.levels; ++l) {
-      const ParamBox& box = config.hierarchy.boxes[l - 1];
+    for (int l = 1; l < hierarchy.levels; ++l) {
+      const ParamBox& box = hierarchy.boxes[l - 1];
       double inside = 0.0;
       for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
         if (breaks[k] >= box.lower[a] && breaks[k + 1] <= box.upper[a]) inside += 1.0;
@@ -71,18 +70,6 @@ SizeEstimate estimateGlobalReferenceSize(const BodyConfig& config, const NurbsPa
 double physicalMemoryBytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
-}
-
-void checkSizeLimit(const YamlDocument& doc, const YAML::Node& refinement,
-                    const SizeEstimate& e, double limit_bytes) {
-  if (!(limit_bytes > 0.0) || e.bytes <= limit_bytes) return;
-  const double GiB = 1024.0 * 1024.0 * 1024.0;
-  throw inputError(doc, refinement ? refinement : doc.root, "refinement",
-                   Str() << "the refined body has " << e.control_points << " control points, "
-                         << e.dofs << " DOFs and " << e.nonzeros << " stored entries of K: at "
-                         << "least " << e.bytes / GiB << " GiB of matrices and factor, above "
-                         << "the limit of " << limit_bytes / GiB << " GiB; refine less, or "
-                         << "raise the limit with --max-memory GIB on a machine that has it");
 }
 
 }  // namespace ffriga

@@ -8,7 +8,9 @@
 // --max-memory raises the limit (default: this machine's physical memory).
 #pragma once
 
-#include "preproc/input/body_config.h"
+#include "common/splines/hierarchical_space.h"
+#include "common/splines/nurbs_patch.h"
+#include "preproc/geometry/body_geometry.h"
 
 namespace ffriga {
 
@@ -19,17 +21,14 @@ struct SizeEstimate {
   double bytes = 0.0;     // K, M and the factor of K, lower bound
 };
 
-SizeEstimate estimateSize(const BodyConfig& config);
+// The global level-0 patch of the exact patch refined by `refinement`.
+SizeEstimate estimateSize(const NurbsPatch& exact, const RefinementConfig& refinement);
 // A global reference (hierarchy.as_global_reference): every level's knot lines inside its
 // box inserted across the patch, from the refined level-0 patch and the boxes.
-SizeEstimate estimateGlobalReferenceSize(const BodyConfig& config, const NurbsPatch& refined);
+SizeEstimate estimateGlobalReferenceSize(const NurbsPatch& refined,
+                                         const HierarchyOptions& hierarchy);
 
 // This machine's physical memory (bytes), 0 if unknown.
 double physicalMemoryBytes();
-
-// Throws InputError naming the body file, the line and the key 'refinement' if
-// estimate.bytes > limit_bytes.
-void checkSizeLimit(const YamlDocument& doc, const YAML::Node& refinement,
-                    const SizeEstimate& estimate, double limit_bytes);
 
 }  // namespace ffriga
