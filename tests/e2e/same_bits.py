@@ -17,8 +17,9 @@ TIMING = ("wall_time_s", "cpu_time_s", "preprocessing_time_s", "peak_memory")  #
 RUN = ("threads", "xdmf")
 
 # Attributes that name the build or where the files lie: the git revision (also inside
-# each SID, so the SIDs' SHA-256 differ too), absolute paths of the scene and the SIDs.
-BUILD = ("git_revision", "sid_sha256", "sid_file", "sid_files", "scene_path")
+# each SID, so the SIDs' SHA-256 differ too), the paths of the body file, the scene and the
+# SIDs (another checkout has other absolute paths).
+BUILD = ("git_revision", "sid_sha256", "sid_file", "sid_files", "scene_path", "input_path")
 
 
 def ignored(path, name, builds):
