@@ -45,6 +45,98 @@ using ParamVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
 using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
 using SpaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
 
+// Active bounds: the directions held at the domain boundary, where the descent direction -g
+// points out of the domain (held[a]), and the free ones (freeDirs[0 .. nf - 1]).
+int freeDirections(const Eigen::VectorXd& s, const ParamVector& g, const Eigen::VectorXd& lo,
+                   const Eigen::VectorXd& hi, int d, int freeDirs[2], bool held[2]) {
+  int nf = 0;
+  for (int a = 0; a < d; ++a) {
+    const bool atLo = s(a) <= lo(a) && g(a) > 0.0;
+    const bool atHi = s(a) >= hi(a) && g(a) < 0.0;
+    held[a] = atLo || atHi;
+    if (!held[a]) freeDirs[nf++] = a;
+  }
+  return nf;
+}
+
+// Convergence: the gradient vanishes in every free direction (Eq. 15),
+// |g_a| <= tol |x_a| (|r| + length) with length = max |x_a| times the domain's size.
+bool gradientVanishes(const ParamVector& g, const Eigen::MatrixXd& X, const SpaceVector& r,
+                      double paramScale, const int freeDirs[2], int nf,
+                      const ProjectionOptions& o) {
+  const double length = (X.colwise().norm().maxCoeff()) * paramScale;
+  bool small = true;
+  for (int i = 0; i < nf; ++i) {
+    const int a = freeDirs[i];
+    if (std::abs(g(a)) > o.tolerance * X.col(a).norm() * (r.norm() + length)) small = false;
+  }
+  return small;
+}
+
+// Newton step on the free directions, H_f step_f = -g_f (Gauss-Newton, G_f step_f = -g_f,
+// if H is not positive definite there), zero in the held ones; `decrease` is the predicted
+// decrease of phi, -1/2 g_f^T step_f.
+ParamVector newtonStep(const ParamVector& g, const ParamMatrix& H, const ParamMatrix& G,
+                       const int freeDirs[2], int nf, int d, double& decrease) {
+  ParamMatrix Hf(nf, nf), Gf(nf, nf);
+  ParamVector gf(nf);
+  for (int i = 0; i < nf; ++i) {
+    gf(i) = g(freeDirs[i]);
+    for (int j = 0; j < nf; ++j) {
+      Hf(i, j) = H(freeDirs[i], freeDirs[j]);
+      Gf(i, j) = G(freeDirs[i], freeDirs[j]);
+    }
+  }
+  Eigen::LLT<ParamMatrix> llt(Hf);
+  const ParamVector sf = llt.info() == Eigen::Success ? ParamVector(-llt.solve(gf))
+                                                      : ParamVector(-Gf.ldlt().solve(gf));
+  ParamVector step = ParamVector::Zero(d);
+  for (int i = 0; i < nf; ++i) step(freeDirs[i]) = sf(i);
+  decrease = -0.5 * gf.dot(sf);
+  return step;
+}
+
+// Backtracking from p.s: accepts the first of step, step/2, ... (at most 30, clamped to the
+// domain) that does not increase phi = |r|^2 / 2 (Newton's full step near the solution;
+// guards Gauss-Newton far from it); s and e: the point reached and its element, trial the
+// surface there. Returns the number of halvings.
+int backtrack(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
+              const SurfaceProjection& p, const SpaceVector& r, double decrease, ParamVector& step,
+              Eigen::VectorXd& s, int& e, SurfacePoint& trial) {
+  const Eigen::VectorXd& lo = surf.domainLower();
+  const Eigen::VectorXd& hi = surf.domainUpper();
+  const double phi = 0.5 * r.squaredNorm();
+  s = p.s;
+  e = p.element;
+  // The full step's trial is evaluated to second order (it is the next iterate when
+  // accepted, as near the solution); the halvings only to order 0.
+  // A step whose predicted decrease of phi, -1/2 g^T step, is below phi's round-off (a few
+  // ulps) cannot be tested by it: the point is a minimum to round-off (seen for points
+  // beyond an edge, |r| ~ 0.1 mm, where up to 22 halvings used to end in the same place).
+  const bool belowRoundOff = decrease <= 8.0 * std::numeric_limits<double>::epsilon() * phi;
+  int k = 0;
+  for (; k < 30 && !belowRoundOff; ++k) {
+    s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
+    e = locate(surf, s, p.element);
+    surf.evaluate(e, s.data(), points, k == 0 ? 2 : 0, trial);
+    if (0.5 * (trial.x - x).squaredNorm() <= phi) break;
+    step *= 0.5;
+  }
+  return k;
+}
+
+// Whether a converged foot point is proper: no direction a in which `bound[a]` says s is at
+// the domain boundary has a gradient |g_a| above round-off, edge_tolerance |x_a| |r|.
+bool orthogonalAtBounds(const ParamVector& g, const Eigen::MatrixXd& X, const SpaceVector& r,
+                        const bool bound[2], int d, const ProjectionOptions& o) {
+  bool orthogonal = true;
+  for (int a = 0; a < d; ++a) {
+    if (bound[a] && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
+      orthogonal = false;
+  }
+  return orthogonal;
+}
+
 bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
             const ProjectionOptions& o, SurfaceProjection& p) {
   const int d = surf.dim();
@@ -64,6 +156,7 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
       surf.evaluate(p.element, p.s.data(), points, 2, p.point);
       evaluated = true;
     }
+    // phi's gradient g, Gauss-Newton matrix G and Hessian H at p.s (header comment).
     const SpaceVector r = p.point.x - x;
     const Eigen::MatrixXd& X = p.point.dx;
     const ParamVector g = X.transpose() * r;
@@ -72,81 +165,30 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
     for (int a = 0; a < d; ++a)
       for (int b = 0; b < d; ++b)
         H(a, b) += r.dot(p.point.ddx.col(secondDerivativeRow(d, a, b) - 1 - d));
-    // Active bounds: at the domain boundary with the descent direction -g pointing out.
-    int freeDirs[2], nf = 0;
+    int freeDirs[2];
     bool held[2] = {false, false};
-    for (int a = 0; a < d; ++a) {
-      const bool atLo = p.s(a) <= lo(a) && g(a) > 0.0;
-      const bool atHi = p.s(a) >= hi(a) && g(a) < 0.0;
-      held[a] = atLo || atHi;
-      if (!held[a]) freeDirs[nf++] = a;
-    }
-    // Converged if the gradient vanishes in every free direction (Eq. 15).
-    const double length = (X.colwise().norm().maxCoeff()) * paramScale;
-    bool small = true;
-    for (int i = 0; i < nf; ++i) {
-      const int a = freeDirs[i];
-      if (std::abs(g(a)) > o.tolerance * X.col(a).norm() * (r.norm() + length)) small = false;
-    }
-    if (small) {
+    const int nf = freeDirections(p.s, g, lo, hi, d, freeDirs, held);
+    if (gradientVanishes(g, X, r, paramScale, freeDirs, nf, o)) {
       // Eq. (15) holds in the free directions. A direction held at the domain boundary
       // (x_C beyond the surface's edge) makes the foot point improper if the gradient there
       // is more than round-off. Free directions are never tested again: for a point close
       // to the surface, |r| -> 0 and a test relative to |r| would reject converged interior
       // points and switch their contact force off discontinuously.
       p.converged = true;
-      p.orthogonal = true;
-      for (int a = 0; a < d; ++a) {
-        if (held[a] && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
-          p.orthogonal = false;
-      }
+      p.orthogonal = orthogonalAtBounds(g, X, r, held, d, o);
       return true;
     }
-    // Newton step on the free directions (Gauss-Newton if H is not positive definite there).
-    ParamMatrix Hf(nf, nf), Gf(nf, nf);
-    ParamVector gf(nf);
-    for (int i = 0; i < nf; ++i) {
-      gf(i) = g(freeDirs[i]);
-      for (int j = 0; j < nf; ++j) {
-        Hf(i, j) = H(freeDirs[i], freeDirs[j]);
-        Gf(i, j) = G(freeDirs[i], freeDirs[j]);
-      }
-    }
-    Eigen::LLT<ParamMatrix> llt(Hf);
-    const ParamVector sf = llt.info() == Eigen::Success ? ParamVector(-llt.solve(gf))
-                                                        : ParamVector(-Gf.ldlt().solve(gf));
-    ParamVector step = ParamVector::Zero(d);
-    for (int i = 0; i < nf; ++i) step(freeDirs[i]) = sf(i);
+    double decrease = 0.0;
+    ParamVector step = newtonStep(g, H, G, freeDirs, nf, d, decrease);
     if (!step.allFinite()) return false;
-    // Backtracking: accept the first of step, step/2, ... that decreases phi = |r|^2 / 2
-    // (Newton's full step near the solution; guards Gauss-Newton far from it).
-    const double phi = 0.5 * r.squaredNorm();
-    s = p.s;
     int e = p.element;
-    // The full step's trial is evaluated to second order (it is the next iterate when
-    // accepted, as near the solution); the halvings only to order 0.
-    // A step whose predicted decrease of phi, -1/2 g^T step, is below phi's round-off (a few
-    // ulps) cannot be tested by it: the point is a minimum to round-off (seen for points
-    // beyond an edge, |r| ~ 0.1 mm, where up to 22 halvings used to end in the same place).
-    const bool belowRoundOff =
-        -0.5 * gf.dot(sf) <= 8.0 * std::numeric_limits<double>::epsilon() * phi;
-    int k = 0;
-    for (; k < 30 && !belowRoundOff; ++k) {
-      s = (p.s + step).cwiseMax(lo).cwiseMin(hi);
-      e = locate(surf, s, p.element);
-      surf.evaluate(e, s.data(), points, k == 0 ? 2 : 0, trial);
-      if (0.5 * (trial.x - x).squaredNorm() <= phi) break;
-      step *= 0.5;
-    }
+    const int k = backtrack(surf, points, x, p, r, decrease, step, s, e, trial);
     if ((s - p.s).norm() <= 1e-15 * paramScale) {
       // No progress possible: a (constrained) minimum to round-off.
+      bool bound[2] = {false, false};
+      for (int a = 0; a < d; ++a) bound[a] = s(a) <= lo(a) || s(a) >= hi(a);
       p.converged = true;
-      p.orthogonal = true;
-      for (int a = 0; a < d; ++a) {
-        const bool bound = s(a) <= lo(a) || s(a) >= hi(a);
-        if (bound && std::abs(g(a)) > o.edge_tolerance * X.col(a).norm() * r.norm())
-          p.orthogonal = false;
-      }
+      p.orthogonal = orthogonalAtBounds(g, X, r, bound, d, o);
       return true;
     }
     p.s = s;
