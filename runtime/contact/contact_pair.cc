@@ -215,6 +215,133 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   }
 }
 
+// One collocation point's outcome in collocate().
+struct ContactPair::PointResult {
+  bool active = false;
+  bool failed = false;
+  double gap = 0.0;
+  double beyond_edge = 0.0;      // penetration behind the edge's tangent plane (m)
+  Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
+  int element = -1;
+  Eigen::VectorXd s;
+};
+
+// Sums of collocate()'s active points, formed serially in point order.
+struct ContactPair::ForceSums {
+  Eigen::VectorXd fbSum;      // C's elastic forces, sum_i Phi_i^T A_C^T f_i
+  Eigen::MatrixXd FT;         // body-frame forces on T's surface control points (cps order)
+  std::vector<char> touched;  // which of those carry force
+  Eigen::MatrixXd R;          // workspace: the target surface's basis at a foot point
+};
+
+bool ContactPair::needsSearch(const Side& sc, int i, const BodyModel& C, const BodyPose& pc,
+                              const World& wc, const BodyPose& pt, const World& wt,
+                              const TargetMotion& motion, PointResult& r, Eigen::VectorXd& x,
+                              Eigen::VectorXd& y) {
+  const int d = dim_;
+  r.xb = sc.xc0.row(i).transpose();
+  if (C.nq() > 0) {  // u_i from the control points' displacements (Side::combo_*)
+    for (int k = sc.combo_offset[i]; k < sc.combo_offset[i + 1]; ++k)
+      r.xb += sc.combo_value[k] * wc.u.segment(sc.combo_local[k] * d, d);
+  }
+  x = pc.origin + pc.A * r.xb;
+  bool near = true;
+  for (int a = 0; a < d; ++a)
+    near = near && x(a) >= wt.lo(a) - margin_ && x(a) <= wt.hi(a) + margin_;
+  if (!near) return false;
+  y = pt.A.transpose() * (x - pt.origin);
+  const Side::Clearance& cl = sc.clearance[i];
+  if (cl.valid && cl.gap - (y - cl.y.head(d)).norm() - motion.since(cl) > 0.0) {
+    ++avoided_;
+    return false;
+  }
+  return true;
+}
+
+void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
+                              double orientT, double factor, const TargetMotion& motion,
+                              const Eigen::VectorXd& x, const Eigen::VectorXd& y,
+                              PointResult& r) const {
+  Side::Clearance& cl = sc.clearance[i];
+  cl.valid = false;
+  SurfaceProjection p = closestPoint(st.surface, wt.points, x, &sc.cache[i]);
+  r.failed = !p.converged;
+  if (!p.converged) return;
+  sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
+  if (!p.orthogonal) {
+    r.beyond_edge = beyondEdgeDepth(wt, orientT * st.surface.normal(p.point.dx), x, p);
+    return;
+  }
+  // World normal: the body's rule applied to world tangents, turned back if the body's
+  // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
+  const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
+  r.gap = n.dot(x - p.point.x);
+  if (r.gap >= 0.0) {
+    cl.valid = true;
+    cl.gap = r.gap;
+    cl.y.head(dim_) = y;
+    cl.reference = st.references.back().id;
+    cl.reference_moves = motion.moves;
+    cl.motion = motion.change.back();
+    return;
+  }
+  r.active = true;
+  r.n = n;
+  r.f = (-options_.penalty * r.gap * sc.weight(i) * factor) * n;
+  r.xt = pt.A.transpose() * (p.point.x - pt.origin);
+  r.element = p.element;
+  r.s = p.s;
+}
+
+void ContactPair::addDiagnostics(const PointResult& r, double weight, double factor,
+                                 ContactState& state) const {
+  if (r.failed) ++state.projection_failures;
+  state.beyond_edge_penetration = std::max(state.beyond_edge_penetration, r.beyond_edge);
+  if (!r.active) return;
+  state.force.head(dim_) += r.f;
+  state.max_penetration = std::max(state.max_penetration, -r.gap);
+  ++state.active_points;
+  state.energy += 0.5 * options_.penalty * r.gap * r.gap * weight * factor;
+}
+
+void ContactPair::addPointForces(int c, int i, const PointResult& r, double factor,
+                                 const BodyModel& C, const BodyPose& pc, const BodyModel& T,
+                                 const BodyPose& pt, double* hC, double* hT, ForceSums& sums) {
+  const Side& sc = side_[c];
+  const Side& st = side_[1 - c];
+  const int d = dim_;
+  // Contact body: rigid and elastic parts at the collocation point.
+  C.addRigidPointForce(pc, r.xb, r.f, hC);
+  const Eigen::VectorXd fbC = pc.A.transpose() * r.f;
+  sums.fbSum += sc.PhiCt.middleCols(i * d, d) * fbC;
+  // Target body: -f at x_T, elastic part through the basis at s.
+  const Eigen::VectorXd minus = -r.f;
+  T.addRigidPointForce(pt, r.xt, minus, hT);
+  const Eigen::VectorXd fbT = pt.A.transpose() * minus;
+  st.surface.basis(r.element, r.s.data(), 0, sums.R);
+  for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
+    const int f = st.surface.functions(r.element)[k];
+    sums.FT.row(st.local[f]) += sums.R(0, k) * fbT.transpose();
+    sums.touched[st.local[f]] = 1;
+  }
+  active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
+                     sums.R.row(0).transpose(), r.xb, r.xt, r.n});
+}
+
+void ContactPair::addElasticForces(const Side& st, const BodyModel& C, const BodyModel& T,
+                                   double* hC, double* hT, const ForceSums& sums) const {
+  const int d = dim_;
+  const int nrC = C.numRigidVelocities(), nrT = T.numRigidVelocities();
+  if (C.nq() > 0) Eigen::Map<Eigen::VectorXd>(hC + nrC, C.nq()) += sums.fbSum;
+  if (T.nq() > 0) {  // only the control points that carry force (O(nq) each)
+    Eigen::Map<Eigen::VectorXd> hTe(hT + nrT, T.nq());
+    for (std::size_t k = 0; k < st.cps.size(); ++k) {
+      if (sums.touched[k])
+        hTe.noalias() += st.PhiSt.middleCols(k * d, d) * sums.FT.row(k).transpose();
+    }
+  }
+}
+
 void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc,
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
                             double* hT, double factor, const TargetMotion& motion,
@@ -222,40 +349,13 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_, nc = static_cast<int>(sc.xc0.rows());
-  struct PointResult {
-    bool active = false;
-    bool failed = false;
-    double gap = 0.0;
-    double beyond_edge = 0.0;  // penetration behind the edge's tangent plane (m)
-    Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
-    int element = -1;
-    Eigen::VectorXd s;
-  };
   std::vector<PointResult> res(nc);
   const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
   // Phase 1 (serial): the points, and which of them need a search.
   std::vector<int> search;
   std::vector<Eigen::VectorXd> xs(nc), ys(nc);
   for (int i = 0; i < nc; ++i) {
-    PointResult& r = res[i];
-    r.xb = sc.xc0.row(i).transpose();
-    if (C.nq() > 0) {  // u_i from the control points' displacements (Side::combo_*)
-      for (int k = sc.combo_offset[i]; k < sc.combo_offset[i + 1]; ++k)
-        r.xb += sc.combo_value[k] * wc.u.segment(sc.combo_local[k] * d, d);
-    }
-    xs[i] = pc.origin + pc.A * r.xb;
-    const Eigen::VectorXd& x = xs[i];
-    bool near = true;
-    for (int a = 0; a < d; ++a)
-      near = near && x(a) >= wt.lo(a) - margin_ && x(a) <= wt.hi(a) + margin_;
-    if (!near) continue;
-    ys[i] = pt.A.transpose() * (x - pt.origin);
-    const Side::Clearance& cl = sc.clearance[i];
-    if (cl.valid && cl.gap - (ys[i] - cl.y.head(d)).norm() - motion.since(cl) > 0.0) {
-      ++avoided_;
-      continue;
-    }
-    search.push_back(i);
+    if (needsSearch(sc, i, C, pc, wc, pt, wt, motion, res[i], xs[i], ys[i])) search.push_back(i);
   }
   searches_ += static_cast<long long>(search.size());
   // Phase 2: closest points of the candidates.
@@ -263,80 +363,17 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
 #pragma omp parallel for schedule(dynamic, 8) if (ns >= kParallelPoints)
   for (int k = 0; k < ns; ++k) {
     const int i = search[k];
-    PointResult& r = res[i];
-    Side::Clearance& cl = sc.clearance[i];
-    cl.valid = false;
-    const Eigen::VectorXd& x = xs[i];
-    SurfaceProjection p = closestPoint(st.surface, wt.points, x, &sc.cache[i]);
-    r.failed = !p.converged;
-    if (!p.converged) continue;
-    sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
-    if (!p.orthogonal) {
-      r.beyond_edge = beyondEdgeDepth(wt, orientT * st.surface.normal(p.point.dx), x, p);
-      continue;
-    }
-    // World normal: the body's rule applied to world tangents, turned back if the body's
-    // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
-    const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
-    r.gap = n.dot(x - p.point.x);
-    if (r.gap >= 0.0) {
-      cl.valid = true;
-      cl.gap = r.gap;
-      cl.y.head(d) = ys[i];
-      cl.reference = st.references.back().id;
-      cl.reference_moves = motion.moves;
-      cl.motion = motion.change.back();
-      continue;
-    }
-    r.active = true;
-    r.n = n;
-    r.f = (-options_.penalty * r.gap * sc.weight(i) * factor) * n;
-    r.xt = pt.A.transpose() * (p.point.x - pt.origin);
-    r.element = p.element;
-    r.s = p.s;
+    searchPoint(sc, st, i, pt, wt, orientT, factor, motion, xs[i], ys[i], res[i]);
   }
-  // Serial sums in point order (independent of the thread count).
-  const int nrC = C.numRigidVelocities(), nrT = T.numRigidVelocities();
-  Eigen::MatrixXd FT = Eigen::MatrixXd::Zero(st.cps.size(), d);  // body-frame forces on T's
-  const std::vector<int>& local = st.local;                      // surface control points
-  std::vector<char> touched(st.cps.size(), 0);
-  Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(C.nq());
-  Eigen::MatrixXd R;
+  // Phase 3: serial sums in point order (independent of the thread count).
+  ForceSums sums{Eigen::VectorXd::Zero(C.nq()), Eigen::MatrixXd::Zero(st.cps.size(), d),
+                 std::vector<char>(st.cps.size(), 0), Eigen::MatrixXd()};
   for (int i = 0; i < nc; ++i) {
     const PointResult& r = res[i];
-    if (state && r.failed) ++state->projection_failures;
-    if (state) state->beyond_edge_penetration = std::max(state->beyond_edge_penetration, r.beyond_edge);
-    if (!r.active) continue;
-    // Contact body: rigid and elastic parts at the collocation point.
-    C.addRigidPointForce(pc, r.xb, r.f, hC);
-    const Eigen::VectorXd fbC = pc.A.transpose() * r.f;
-    fbSum += sc.PhiCt.middleCols(i * d, d) * fbC;
-    // Target body: -f at x_T, elastic part through the basis at s.
-    const Eigen::VectorXd minus = -r.f;
-    T.addRigidPointForce(pt, r.xt, minus, hT);
-    const Eigen::VectorXd fbT = pt.A.transpose() * minus;
-    st.surface.basis(r.element, r.s.data(), 0, R);
-    for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
-      const int f = st.surface.functions(r.element)[k];
-      FT.row(local[f]) += R(0, k) * fbT.transpose();
-      touched[local[f]] = 1;
-    }
-    active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
-                       R.row(0).transpose(), r.xb, r.xt, r.n});
-    if (state) {
-      state->force.head(d) += r.f;
-      state->max_penetration = std::max(state->max_penetration, -r.gap);
-      ++state->active_points;
-      state->energy += 0.5 * options_.penalty * r.gap * r.gap * sc.weight(i) * factor;
-    }
+    if (state) addDiagnostics(r, sc.weight(i), factor, *state);
+    if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
   }
-  if (C.nq() > 0) Eigen::Map<Eigen::VectorXd>(hC + nrC, C.nq()) += fbSum;
-  if (T.nq() > 0) {  // only the control points that carry force (O(nq) each)
-    Eigen::Map<Eigen::VectorXd> hTe(hT + nrT, T.nq());
-    for (std::size_t k = 0; k < st.cps.size(); ++k) {
-      if (touched[k]) hTe.noalias() += st.PhiSt.middleCols(k * d, d) * FT.row(k).transpose();
-    }
-  }
+  addElasticForces(st, C, T, hC, hT, sums);
 }
 
 const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {

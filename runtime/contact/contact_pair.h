@@ -188,9 +188,42 @@ class ContactPair {
                          const SurfaceProjection& p) const;
   void setupSide(Side& side, const BodyModel& body, int surface);
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
+  // Side c's collocation points against the other side as the target: adds the generalised
+  // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three
+  // phases: which points need a search (serial), the searches (parallel), the sums (serial).
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
                  const TargetMotion& motion, ContactState* state);
+  struct PointResult;  // one collocation point's outcome (contact_pair.cc)
+  struct ForceSums;    // the serial sums over the active points (contact_pair.cc)
+  // Phase 1, point i of contact side sc: its body point r.xb (from the control points'
+  // displacements), world position x and, if near the target's inflated box, its position y
+  // in the target's frame; true if it needs a closest-point search (not near: false; cleared
+  // by the clearance bound of the header comment: false, counted as avoided).
+  bool needsSearch(const Side& sc, int i, const BodyModel& C, const BodyPose& pc, const World& wc,
+                   const BodyPose& pt, const World& wt, const TargetMotion& motion, PointResult& r,
+                   Eigen::VectorXd& x, Eigen::VectorXd& y);
+  // Phase 2, candidate i at x (y in the target's frame): its closest point on the target
+  // (Eq. 15, warm-started from and stored in sc.cache[i]), the normal gap (Eq. 16) and, for
+  // g_n < 0, the penalty force on C (Eq. 17); a point in front gets a clearance record in
+  // sc.clearance[i], one beyond the edge its depth. Writes only point i's entries.
+  void searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
+                   double orientT, double factor, const TargetMotion& motion,
+                   const Eigen::VectorXd& x, const Eigen::VectorXd& y, PointResult& r) const;
+  // Phase 3, one point's diagnostics: a failed search, its depth beyond the edge and, if
+  // active, its force, penetration and penalty energy 1/2 c_p g_n^2 w_i (times `factor`).
+  void addDiagnostics(const PointResult& r, double weight, double factor,
+                      ContactState& state) const;
+  // Phase 3, active point i of side c (Eq. 18): the rigid parts of f on C and of -f on T
+  // into hC and hT, C's elastic part Phi_i^T A_C^T f into sums.fbSum, T's body-frame force
+  // spread over its surface control points by the basis at s (sums.FT); recorded in active_.
+  void addPointForces(int c, int i, const PointResult& r, double factor, const BodyModel& C,
+                      const BodyPose& pc, const BodyModel& T, const BodyPose& pt, double* hC,
+                      double* hT, ForceSums& sums);
+  // Phase 3, the elastic parts of the sums: sums.fbSum into hC, and on target side st
+  // Phi_k^T FT_k of each surface control point k that carries force into hT.
+  void addElasticForces(const Side& st, const BodyModel& C, const BodyModel& T, double* hC,
+                        double* hT, const ForceSums& sums) const;
   // Counts of the closest-point searches: done, and avoided by the clearance bound.
  public:
   long long searches() const { return searches_; }
