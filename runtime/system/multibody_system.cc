@@ -157,6 +157,107 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
   return true;
 }
 
+namespace {
+
+// M^-1 x for a body with Me = E from its mass blocks (C, S^-1 = (Mrr - C^T C)^-1, nrv rigid
+// velocities): z_r = S^-1 (x_r - C^T x_e), z_e = x_e - C z_r.
+Eigen::VectorXd solveMassBlocks(const Eigen::MatrixXd& C, const Eigen::MatrixXd& Sinv, int nrv,
+                                const Eigen::VectorXd& x) {
+  const Eigen::VectorXd xr = x.head(nrv), xe = x.tail(x.size() - nrv);
+  Eigen::VectorXd z(x.size());
+  z.head(nrv) = Sinv * (xr - C.transpose() * xe);
+  z.tail(xe.size()) = xe - C * z.head(nrv);
+  return z;
+}
+
+}  // namespace
+
+int MultibodySystem::structuredRank() const {
+  int r = 0;
+  for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
+  for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
+  r += num_constraints_;  // the joints' projection of the elastic columns (below)
+  return r;
+}
+
+void MultibodySystem::elasticPairs(int b, StructuredJacobian& J, std::vector<double>& fRate) const {
+  const BodyModel& body = *bodies_[b];
+  const int nq = body.nq(), nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
+  const int po = pos_offset_[b], vo = vel_offset_[b];
+  const QuasiStaticModes& qs = body.quasiStatic();
+  for (int s = 0, i = 0; i < nq; ++i) {
+    if (s < qs.size() && qs.index[s] == i) {
+      J.f_index.push_back(po + nrp + i);
+      fRate.push_back(1.0 / qs.tau);
+      ++s;
+      continue;
+    }
+    J.k(J.q_index.size()) = body.stiffnessDiagonal()(i);
+    J.c(J.q_index.size()) = body.dampingDiagonal()(i);
+    J.q_index.push_back(po + nrp + i);
+    J.v_index.push_back(vo + nrv + i);
+  }
+}
+
+void MultibodySystem::rigidColumns(int b, Eigen::VectorXd& yy, const double* scale,
+                                   StructuredJacobian& J, int& col) {
+  const BodyModel& body = *bodies_[b];
+  const int np = body.numPositions(), nv = body.numVelocities();
+  const int nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
+  const int po = pos_offset_[b], vo = vel_offset_[b];
+  if (joints_.empty()) {
+    rateQuotients(b, nrp, nrv, yy, scale,
+                  [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
+                    J.U.col(col).segment(po, np) = dpr;
+                    J.U.col(col).segment(vo, nv) = da;
+                    J.V(j, col++) = 1.0;
+                  });
+  } else {
+    constrainedQuotients(b, nrp, nrv, yy, scale, [&](int j, const Eigen::VectorXd& df) {
+      J.U.col(col) = df;
+      J.V(j, col++) = 1.0;
+    });
+  }
+}
+
+void MultibodySystem::inertialCouplingColumns(int b, const double* y, StructuredJacobian& J,
+                                              Eigen::MatrixXd& C, Eigen::MatrixXd& Sinv,
+                                              int& col) const {
+  const BodyModel& body = *bodies_[b];
+  const int nq = body.nq(), nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
+  const int po = pos_offset_[b], vo = vel_offset_[b];
+  Eigen::MatrixXd Mrr;
+  body.massBlocks(y + po, C, Mrr);
+  Sinv = (Mrr - C.transpose() * C).inverse();
+  const Eigen::MatrixXd SCt = Sinv * C.transpose();
+  for (int k = 0; k < nrv; ++k, ++col) {
+    J.U(vo + k, col) = 1.0;
+    J.U.col(col).segment(vo + nrv, nq) = -C.col(k);
+    J.V.col(col).segment(po + nrp, nq) =
+        SCt.row(k).transpose().cwiseProduct(body.stiffnessDiagonal());
+    J.V.col(col).segment(vo + nrv, nq) =
+        SCt.row(k).transpose().cwiseProduct(body.dampingDiagonal());
+  }
+}
+
+void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
+                                     const std::vector<Eigen::MatrixXd>& Sinv,
+                                     StructuredJacobian& J, int& col) const {
+  auto solveMass = [&](int b, const Eigen::VectorXd& x) {
+    return solveMassBlocks(C[b], Sinv[b], bodies_[b]->numRigidVelocities(), x);
+  };
+  for (const auto& pair : contacts_) {
+    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+      const int bc = t.body_c, bt = t.body_t;
+      J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
+      J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
+      J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
+      J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+      ++col;
+    }
+  }
+}
+
 bool MultibodySystem::structuredJacobian(double, const double* y, const double* scale,
                                          StructuredJacobian& J) {
   // Force elements without joints: as jacobian() (their stiffness is not in the terms).
@@ -165,10 +266,7 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
     if (!b->diagonalElasticity()) return false;
   const int n = size_;
   contactForces(y, h_, nullptr);
-  int r = 0;
-  for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
-  for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
-  r += num_constraints_;  // the joints' projection of the elastic columns (below)
+  const int r = structuredRank();
   // Woodbury costs O(n r^2 + r^3): with as many low-rank columns as half the state (rigid
   // bodies only, few elastic coordinates) the dense LU is the cheaper Newton matrix.
   if (!joints_.empty() && 2 * r > n) return false;
@@ -187,74 +285,11 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
   Eigen::VectorXd yy = Eigen::Map<const Eigen::VectorXd>(y, n);
   int col = 0;
   for (int b = 0; b < numBodies(); ++b) {
-    const BodyModel& body = *bodies_[b];
-    const int np = body.numPositions(), nv = body.numVelocities(), nq = body.nq();
-    const int nrp = body.numRigidPositions(), nrv = body.numRigidVelocities();
-    const int po = pos_offset_[b], vo = vel_offset_[b];
-    // Elastic pairs: d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E); quasi-static
-    // coordinates: d/dt q = -q / tau + ... (their rows of U are transformed below).
-    const QuasiStaticModes& qs = body.quasiStatic();
-    for (int s = 0, i = 0; i < nq; ++i) {
-      if (s < qs.size() && qs.index[s] == i) {
-        J.f_index.push_back(po + nrp + i);
-        fRate.push_back(1.0 / qs.tau);
-        ++s;
-        continue;
-      }
-      J.k(J.q_index.size()) = body.stiffnessDiagonal()(i);
-      J.c(J.q_index.size()) = body.dampingDiagonal()(i);
-      J.q_index.push_back(po + nrp + i);
-      J.v_index.push_back(vo + nrv + i);
-    }
-    // Rigid columns: difference quotients of the body's rates, contact forces frozen (with
-    // joints: of every body's constrained rates, which the joints couple).
-    if (joints_.empty()) {
-      rateQuotients(b, nrp, nrv, yy, scale,
-                    [&](int j, const Eigen::VectorXd& dpr, const Eigen::VectorXd& da) {
-                      J.U.col(col).segment(po, np) = dpr;
-                      J.U.col(col).segment(vo, nv) = da;
-                      J.V(j, col++) = 1.0;
-                    });
-    } else {
-      constrainedQuotients(b, nrp, nrv, yy, scale, [&](int j, const Eigen::VectorXd& df) {
-        J.U.col(col) = df;
-        J.V(j, col++) = 1.0;
-      });
-    }
-    // Elastic columns through M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]]
-    // (S = Mrr - C^T C): d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c).
-    Eigen::MatrixXd Mrr;
-    body.massBlocks(y + po, C[b], Mrr);
-    Sinv[b] = (Mrr - C[b].transpose() * C[b]).inverse();
-    const Eigen::MatrixXd SCt = Sinv[b] * C[b].transpose();
-    for (int k = 0; k < nrv; ++k, ++col) {
-      J.U(vo + k, col) = 1.0;
-      J.U.col(col).segment(vo + nrv, nq) = -C[b].col(k);
-      J.V.col(col).segment(po + nrp, nq) =
-          SCt.row(k).transpose().cwiseProduct(body.stiffnessDiagonal());
-      J.V.col(col).segment(vo + nrv, nq) =
-          SCt.row(k).transpose().cwiseProduct(body.dampingDiagonal());
-    }
+    elasticPairs(b, J, fRate);
+    rigidColumns(b, yy, scale, J, col);
+    inertialCouplingColumns(b, y, J, C[b], Sinv[b], col);
   }
-  // Contact: d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T (contact_pair.h), mapped by M^-1.
-  auto solveMass = [&](int b, const Eigen::VectorXd& x) {
-    const int nrv = bodies_[b]->numRigidVelocities();
-    const Eigen::VectorXd xr = x.head(nrv), xe = x.tail(x.size() - nrv);
-    Eigen::VectorXd z(x.size());
-    z.head(nrv) = Sinv[b] * (xr - C[b].transpose() * xe);
-    z.tail(xe.size()) = xe - C[b] * z.head(nrv);
-    return z;
-  };
-  for (const auto& pair : contacts_) {
-    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
-      const int bc = t.body_c, bt = t.body_t;
-      J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
-      J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
-      J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
-      J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
-      ++col;
-    }
-  }
+  contactColumns(C, Sinv, J, col);
   J.k.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
   J.c.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
   J.f_rate = Eigen::Map<const Eigen::VectorXd>(fRate.data(), static_cast<Eigen::Index>(fRate.size()));

@@ -212,6 +212,30 @@ class MultibodySystem : public OdeSystem {
   // With joints: projects the structured Jacobian's columns onto the constrained motion and
   // appends the joints' num_constraints_ columns at col (multibody_system.cc).
   void projectJacobian(const double* y, StructuredJacobian& J, int& col) const;
+  // The phases of structuredJacobian(). The number of its low-rank columns: per body the
+  // rigid positions and twice the rigid velocities, one per contact stiffness term and one
+  // per joint equation.
+  int structuredRank() const;
+  // Body b's elastic pairs, d/dt q = qdot, d/dt qdot = -k q - c qdot (Me = E), appended to
+  // J's q_index, v_index, k and c; its quasi-static coordinates, d/dt q = -q / tau + ...,
+  // to J.f_index and fRate (their rows of U are transformed afterwards).
+  void elasticPairs(int b, StructuredJacobian& J, std::vector<double>& fRate) const;
+  // Body b's rigid columns of U V^T from column col on: difference quotients of the body's
+  // rates, contact forces frozen (with joints: of every body's constrained rates, which the
+  // joints couple).
+  void rigidColumns(int b, Eigen::VectorXd& yy, const double* scale, StructuredJacobian& J,
+                    int& col);
+  // Body b's rigid-elastic inertial coupling, nrv columns from col on, through
+  // M^-1 = [[S^-1, -S^-1 C^T], [-C S^-1, E + C S^-1 C^T]] (S = Mrr - C^T C):
+  // d a / d(q, qdot) = [0; -(k, c)] + [I; -C] S^-1 C^T (k, c). C and Sinv = S^-1 are kept
+  // for contactColumns().
+  void inertialCouplingColumns(int b, const double* y, StructuredJacobian& J, Eigen::MatrixXd& C,
+                               Eigen::MatrixXd& Sinv, int& col) const;
+  // One column per contact stiffness term from col on: d h / d s_p = -k [bvC; -bvT]
+  // [bpC; -bpT]^T (contact_pair.h), mapped by each body's M^-1 (its C and Sinv).
+  void contactColumns(const std::vector<Eigen::MatrixXd>& C,
+                      const std::vector<Eigen::MatrixXd>& Sinv, StructuredJacobian& J,
+                      int& col) const;
 };
 
 }  // namespace ffriga
