@@ -236,6 +236,10 @@ class MultibodySystem : public OdeSystem {
   void contactColumns(const std::vector<Eigen::MatrixXd>& C,
                       const std::vector<Eigen::MatrixXd>& Sinv, StructuredJacobian& J,
                       int& col) const;
+  // A step of projectQuasiStatic(): the contact and force elements' forces at y into h_ and
+  // the accelerations of each body with quasi-static coordinates (first[b] >= 0) into accel[b].
+  void quasiStaticAccelerations(const double* y, const std::vector<int>& first,
+                                std::vector<Eigen::VectorXd>& accel);
 };
 
 }  // namespace ffriga

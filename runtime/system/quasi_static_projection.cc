@@ -13,12 +13,94 @@
 // manifold by a finite amount that the next step's error test sees at any step size (seen:
 // "error test failed repeatedly" at h = 5e-13 s on sphere2d_g3 as two points separated).
 // The projection removes that offset; it costs one or two contact evaluations per step.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "common/base/error.h"
 #include "runtime/system/multibody_system.h"
 
 namespace ffriga {
+
+namespace {
+
+// A quasi-static coordinate in the system's global list: body, state index of q_i, velocity
+// index of the acceleration entry, stiffness.
+struct Coordinate {
+  int body, position, velocity;
+  double k, phi;  // 1/s^2; max |Phi_i| (m per unit q_i)
+};
+
+// The global list of the quasi-static coordinates, body by body; first[b] is the list index
+// of body b's first one (left at -1 for a body without).
+std::vector<Coordinate> quasiStaticCoordinates(const MultibodySystem& system,
+                                               std::vector<int>& first) {
+  std::vector<Coordinate> list;
+  for (int b = 0; b < system.numBodies(); ++b) {
+    const BodyModel& body = system.body(b);
+    const QuasiStaticModes& qs = body.quasiStatic();
+    if (!qs.empty()) first[b] = static_cast<int>(list.size());
+    for (int s = 0; s < qs.size(); ++s)
+      list.push_back({b, system.positionOffset(b) + body.numRigidPositions() + qs.index[s],
+                      body.numRigidVelocities() + qs.index[s], qs.stiffness(s), qs.reach(s)});
+  }
+  return list;
+}
+
+// Contact stiffness on the quasi-static coordinates: the columns u_t of U (n x P), the
+// quasi-static rows of [bvC; -bvT] of each stiffness term t that reaches them, and the
+// weights W = diag(k_t).
+void contactStiffnessColumns(const MultibodySystem& system, const std::vector<Coordinate>& list,
+                             std::vector<Eigen::VectorXd>& columns, std::vector<double>& weights) {
+  const int n = static_cast<int>(list.size());
+  for (int c = 0; c < system.numContacts(); ++c) {
+    for (const ContactStiffnessTerm& t : system.contact(c).stiffnessTerms()) {
+      Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+      bool any = false;
+      for (int j = 0; j < n; ++j) {
+        const Coordinate& q = list[j];
+        if (q.body == t.body_c) u(j) += t.bvC(q.velocity);
+        if (q.body == t.body_t) u(j) -= t.bvT(q.velocity);
+        any = any || q.body == t.body_c || q.body == t.body_t;
+      }
+      if (!any || !(t.k > 0.0)) continue;  // a point on the axis has no ring weight
+      columns.push_back(std::move(u));
+      weights.push_back(t.k);
+    }
+  }
+}
+
+// The Newton step dq = A^-1 r, A = K + U W U^T (K = diag(k), U and W of
+// contactStiffnessColumns), by Woodbury: A^-1 = K^-1 - K^-1 U (W^-1 + U^T K^-1 U)^-1 U^T K^-1.
+void woodburyStep(const Eigen::VectorXd& k, const Eigen::VectorXd& r,
+                  const std::vector<Eigen::VectorXd>& columns, const std::vector<double>& weights,
+                  Eigen::VectorXd& dq) {
+  const int n = static_cast<int>(k.size());
+  dq = r.cwiseQuotient(k);
+  const int P = static_cast<int>(columns.size());
+  if (P > 0) {
+    Eigen::MatrixXd U(n, P), KU(n, P);
+    for (int p = 0; p < P; ++p) U.col(p) = columns[p];
+    KU = k.cwiseInverse().asDiagonal() * U;
+    Eigen::MatrixXd C = U.transpose() * KU;
+    for (int p = 0; p < P; ++p) C(p, p) += 1.0 / weights[p];
+    const Eigen::LDLT<Eigen::MatrixXd> ldlt(C);
+    dq -= KU * ldlt.solve(U.transpose() * dq);
+  }
+}
+
+// Adds dq to the quasi-static coordinates in y; change and size (m): the largest point
+// displacement of a coordinate's correction and of its new value.
+void applyCorrection(const std::vector<Coordinate>& list, const Eigen::VectorXd& dq, double* y,
+                     double& change, double& size) {
+  for (int j = 0; j < static_cast<int>(list.size()); ++j) {
+    y[list[j].position] += dq(j);
+    change = std::max(change, std::abs(dq(j)) * list[j].phi);
+    size = std::max(size, std::abs(y[list[j].position]) * list[j].phi);
+  }
+}
+
+}  // namespace
 
 bool MultibodySystem::hasQuasiStatic() const {
   for (const auto& b : bodies_)
@@ -26,23 +108,21 @@ bool MultibodySystem::hasQuasiStatic() const {
   return false;
 }
 
-bool MultibodySystem::projectQuasiStatic(double* y) {
-  // Global list of the quasi-static coordinates: body, state index of q_i, velocity index
-  // of the acceleration entry, stiffness.
-  struct Coordinate {
-    int body, position, velocity;
-    double k, phi;  // 1/s^2; max |Phi_i| (m per unit q_i)
-  };
-  std::vector<Coordinate> list;
-  std::vector<int> first(bodies_.size(), -1);
+void MultibodySystem::quasiStaticAccelerations(const double* y, const std::vector<int>& first,
+                                               std::vector<Eigen::VectorXd>& accel) {
+  contactForces(y, h_, nullptr);
+  addLineForces(y, h_, nullptr);
   for (int b = 0; b < numBodies(); ++b) {
-    const QuasiStaticModes& qs = bodies_[b]->quasiStatic();
-    if (!qs.empty()) first[b] = static_cast<int>(list.size());
-    for (int s = 0; s < qs.size(); ++s)
-      list.push_back({b, pos_offset_[b] + bodies_[b]->numRigidPositions() + qs.index[s],
-                      bodies_[b]->numRigidVelocities() + qs.index[s], qs.stiffness(s),
-                      qs.reach(s)});
+    if (first[b] < 0) continue;
+    accel[b].resize(bodies_[b]->numVelocities());
+    bodies_[b]->accelerations(y + pos_offset_[b], y + vel_offset_[b], h_[b].data(), gravity_,
+                              accel[b].data());
   }
+}
+
+bool MultibodySystem::projectQuasiStatic(double* y) {
+  std::vector<int> first(bodies_.size(), -1);
+  const std::vector<Coordinate> list = quasiStaticCoordinates(*this, first);
   const int n = static_cast<int>(list.size());
   if (n == 0) return true;
   Eigen::VectorXd k(n), r(n), dq(n);
@@ -51,52 +131,15 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
   constexpr int kMaxIterations = 8;
   double previous = 0.0;  // the last iteration's change (m)
   for (int it = 0; it < kMaxIterations; ++it) {
-    contactForces(y, h_, nullptr);
-    addLineForces(y, h_, nullptr);
-    for (int b = 0; b < numBodies(); ++b) {
-      if (first[b] < 0) continue;
-      accel[b].resize(bodies_[b]->numVelocities());
-      bodies_[b]->accelerations(y + pos_offset_[b], y + vel_offset_[b], h_[b].data(), gravity_,
-                                accel[b].data());
-    }
+    quasiStaticAccelerations(y, first, accel);
     for (int j = 0; j < n; ++j) r(j) = accel[list[j].body](list[j].velocity);
-    // Contact stiffness on the quasi-static coordinates, U (n x P), W = diag(k_t).
     std::vector<Eigen::VectorXd> columns;
     std::vector<double> weights;
-    for (const auto& pair : contacts_) {
-      for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
-        Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
-        bool any = false;
-        for (int j = 0; j < n; ++j) {
-          const Coordinate& c = list[j];
-          if (c.body == t.body_c) u(j) += t.bvC(c.velocity);
-          if (c.body == t.body_t) u(j) -= t.bvT(c.velocity);
-          any = any || c.body == t.body_c || c.body == t.body_t;
-        }
-        if (!any || !(t.k > 0.0)) continue;  // a point on the axis has no ring weight
-        columns.push_back(std::move(u));
-        weights.push_back(t.k);
-      }
-    }
-    // dq = A^-1 r, A = K + U W U^T: A^-1 = K^-1 - K^-1 U (W^-1 + U^T K^-1 U)^-1 U^T K^-1.
-    dq = r.cwiseQuotient(k);
-    const int P = static_cast<int>(columns.size());
-    if (P > 0) {
-      Eigen::MatrixXd U(n, P), KU(n, P);
-      for (int p = 0; p < P; ++p) U.col(p) = columns[p];
-      KU = k.cwiseInverse().asDiagonal() * U;
-      Eigen::MatrixXd C = U.transpose() * KU;
-      for (int p = 0; p < P; ++p) C(p, p) += 1.0 / weights[p];
-      const Eigen::LDLT<Eigen::MatrixXd> ldlt(C);
-      dq -= KU * ldlt.solve(U.transpose() * dq);
-    }
+    contactStiffnessColumns(*this, list, columns, weights);
+    woodburyStep(k, r, columns, weights, dq);
     if (!dq.allFinite()) return false;
     double change = 0.0, size = 0.0;  // m: the largest point displacement of a coordinate
-    for (int j = 0; j < n; ++j) {
-      y[list[j].position] += dq(j);
-      change = std::max(change, std::abs(dq(j)) * list[j].phi);
-      size = std::max(size, std::abs(y[list[j].position]) * list[j].phi);
-    }
+    applyCorrection(list, dq, y, change, size);
     // Converged when the correction moves no point by more than 1e-9 of the quasi-static
     // displacements or 1e-16 m (1e-4 of the default atol_position): the penalty force is
     // piecewise linear in q_s, so Newton is exact once the active set holds, up to the
