@@ -78,7 +78,7 @@ Row measure(const FlexibleBodySid& full, int nq, int repeats) {
   sys.addBody(std::make_unique<ffriga::FloatingBody3d>("upper", sid));
   ffriga::ContactOptions opt;
   opt.penalty = 1e17;  // N/m^3, as the scenes
-  sys.addContact(std::make_unique<ffriga::ContactPair>("impact", 0, sys.body(0), 0, 1,
+  sys.addForceElement(std::make_unique<ffriga::ContactPair>("impact", 0, sys.body(0), 0, 1,
                                                        sys.body(1), 0, opt));
   // Hertz's largest approach of the 0.2 m/s impact of two such spheres.
   const double R = sid->geometry.radius;

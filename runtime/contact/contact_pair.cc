@@ -16,9 +16,9 @@ constexpr int kParallelPoints = 128;
 
 ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b,
                          const BodyModel& B, int surfaceB, const ContactOptions& options)
-    : name_(std::move(name)), index_{a, b}, options_(options) {
+    : ForceElement(std::move(name), a, b), options_(options) {
   if (A.spaceDim() != B.spaceDim()) {
-    throw InputError(Str() << "contact '" << name_ << "': bodies '" << A.name() << "' ("
+    throw InputError(Str() << "contact '" << this->name() << "': bodies '" << A.name() << "' ("
                            << A.sid().model << ") and '" << B.name() << "' (" << B.sid().model
                            << ") are of different kinds");
   }
@@ -32,6 +32,13 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
     size_ = std::max(size_, (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm());
   }
   margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
+}
+
+void ContactPair::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
+                            const ForceStates& states) {
+  const int a = bodyA(), b = bodyB();
+  evaluate(at.body(a), at.pose(a), at.body(b), at.pose(b), h[a].data(), h[b].data(),
+           states.contacts ? &(*states.contacts)[slot()] : nullptr);
 }
 
 double ContactPair::boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
@@ -376,7 +383,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   addElasticForces(st, C, T, hC, hT, sums);
 }
 
-const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {
+const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
   if (terms_formed_) return terms_;
   terms_.clear();
   terms_.reserve(active_.size());
@@ -395,9 +402,9 @@ const std::vector<ContactStiffnessTerm>& ContactPair::stiffnessTerms() const {
         PhiTt += a.basis(k) * st.PhiSt.middleCols(st.local[f] * d, d);
       }
     }
-    ContactStiffnessTerm term;
-    term.body_c = index_[a.c];
-    term.body_t = index_[1 - a.c];
+    StiffnessTerm term;
+    term.body_c = a.c == 0 ? bodyA() : bodyB();
+    term.body_t = a.c == 0 ? bodyB() : bodyA();
     term.k = a.k;
     C.pointGradients(poses_[a.c], a.xb, sc.PhiCt.middleCols(a.i * d, d).transpose(), a.n, term.bvC,
                      term.bpC);
@@ -433,7 +440,7 @@ Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& 
     for (int i = 0; i < nc; ++i) {  // in point order: the same answer on any thread count
       if (depth[i] <= deepest.depth) continue;
       deepest.depth = depth[i];
-      deepest.contact_body = index_[c];
+      deepest.contact_body = c == 0 ? bodyA() : bodyB();
       const Eigen::VectorXd x = pc.origin + pc.A * (sc.xc0.row(i).transpose() + sc.PhiCt.middleCols(i * dim_, dim_).transpose() * pc.q);
       deepest.point.setZero();
       deepest.point.head(dim_) = x;

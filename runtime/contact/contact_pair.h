@@ -41,6 +41,7 @@
 #include "common/splines/extracted_surface.h"
 #include "runtime/bodies/body_model.h"
 #include "runtime/contact/closest_point.h"
+#include "runtime/forces/force_element.h"
 
 namespace ffriga {
 
@@ -78,24 +79,21 @@ struct ContactOptions {
   double penetration_tolerance = -1.0;
 };
 
-// Linearisation of one active collocation point for the Newton matrix (Eq. 17-18): with
-// g = n^T (x_C - x_T) and h_C = bvC phi, h_T = -bvT phi, phi = -k g, k = c_p w_i (role factor
-// included):  d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T  (change of n neglected).
-struct ContactStiffnessTerm {
-  int body_c = 0, body_t = 0;  // system body indices
-  double k = 0.0;              // N/m
-  Eigen::VectorXd bvC, bpC, bvT, bpT;
-};
-
-class ContactPair {
+// A force element (runtime/forces/force_element.h) with stiffness terms: one per active
+// collocation point, its linearisation for the Newton matrix (Eq. 17-18) with
+// k = c_p w_i (role factor included).
+class ContactPair : public ForceElement {
  public:
   ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b, const BodyModel& B,
               int surfaceB, const ContactOptions& options);
 
-  const std::string& name() const { return name_; }
-  int bodyA() const { return index_[0]; }
-  int bodyB() const { return index_[1]; }
   const ContactOptions& options() const { return options_; }
+  const char* kind() const override { return "contact"; }
+  bool isContact() const override { return true; }
+  bool hasStiffnessTerms() const override { return true; }
+  // evaluate() at the context's poses, its state into states.contacts[slot()].
+  void addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
+                 const ForceStates& states) override;
 
   // Separation of the two surfaces' bounding boxes (deformed control points, world
   // coordinates; the largest gap over the axes, m, <= 0 when they overlap), and the size of
@@ -115,7 +113,7 @@ class ContactPair {
                                  const BodyPose& pb) const;
   // Linearisation of the active points of the last evaluate(), formed on the first call
   // after it (O(nq) per point and body: right-hand sides that need no Jacobian skip it).
-  const std::vector<ContactStiffnessTerm>& stiffnessTerms() const;
+  const std::vector<StiffnessTerm>& stiffnessTerms() const override;
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
   // fills `state` if given.
   void evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B, const BodyPose& pb,
@@ -232,7 +230,6 @@ class ContactPair {
  private:
   long long searches_ = 0, avoided_ = 0;
 
-  std::string name_;
   // What stiffnessTerms() needs of each active point of the last evaluate(): the contact
   // side c, collocation point i, the foot point's element on the target and its basis
   // values there, body points, normal and k; and the bodies and poses of that evaluation.
@@ -244,9 +241,8 @@ class ContactPair {
   std::vector<ActivePoint> active_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
   BodyPose poses_[2];
-  mutable std::vector<ContactStiffnessTerm> terms_;
+  mutable std::vector<StiffnessTerm> terms_;
   mutable bool terms_formed_ = true;
-  int index_[2];
   ContactOptions options_;
   Side side_[2];
   int dim_ = 3;

@@ -1,5 +1,5 @@
-// Force elements that act along the line between two marker points (DESIGN.md: contact
-// pairs, spring-dampers and Hertz point contact are force elements of one kind): with
+// Force elements (runtime/forces/force_element.h) that act along the line between two
+// marker points: with
 // d = R_b - R_a, length l = |d|, direction n = d / l and rate dl/dt = n . (dR_b/dt - dR_a/dt)
 // (runtime/bodies/marker_kinematics.h), a tension T(l, dl/dt) (N, > 0 pulls the ends
 // together) acts as the force +T n on end a and -T n on end b; their generalised forces are
@@ -12,6 +12,7 @@
 #include <Eigen/Dense>
 
 #include "runtime/bodies/body_marker.h"
+#include "runtime/forces/force_element.h"
 
 namespace ffriga {
 
@@ -22,28 +23,24 @@ struct LineForceState {
   double energy = 0.0;   // J, potential of the conservative part
 };
 
-class LineForce {
+class LineForce : public ForceElement {
  public:
   LineForce(std::string name, MarkerEnd a, MarkerEnd b);
-  virtual ~LineForce() = default;
-  const std::string& name() const { return name_; }
   const MarkerEnd& end(int i) const { return i == 0 ? a_ : b_; }
-  virtual const char* kind() const = 0;
-  // True for contact laws (a compressive force means contact: the phase table of Table 3 and
-  // the headline contact attributes count it).
-  virtual bool isContact() const { return false; }
+  bool isContact() const override { return false; }
+  void addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
+                 const ForceStates& states) override;
 
   // Adds the generalised forces at the ends' states (nullptr for the ground) to ha, hb
   // (each body's numVelocities entries; ha unused for the ground).
-  void addForces(const double* spA, const double* svA, const double* spB, const double* svB,
-                 double* ha, double* hb, LineForceState* state) const;
+  void apply(const double* spA, const double* svA, const double* spB, const double* svB,
+             double* ha, double* hb, LineForceState* state) const;
 
  protected:
   virtual double tension(double length, double rate) const = 0;
   virtual double energy(double length) const = 0;
 
  private:
-  std::string name_;
   MarkerEnd a_, b_;
 };
 

@@ -175,7 +175,7 @@ void SceneBuilder::addContacts() {
         doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
     const std::string name = C["name"] ? getString(doc(), C["name"], k + ".name")
                                        : sys.body(ia).name() + "-" + sys.body(ib).name();
-    sys.addContact(std::make_unique<ContactPair>(name, ia, sys.body(ia), surfA, ib, sys.body(ib),
+    sys.addForceElement(std::make_unique<ContactPair>(name, ia, sys.body(ia), surfA, ib, sys.body(ib),
                                                  surfB, o));
   }
 }

@@ -235,7 +235,7 @@ void addForceElements(const YamlDocument& doc, const std::map<std::string, int>&
       const double damp = F["damping"] ? getDouble(doc, F["damping"], k + ".damping") : 0.0;
       const double free =
           F["free_length"] ? getDouble(doc, F["free_length"], k + ".free_length") : l0;
-      sys.addLineForce(
+      sys.addForceElement(
           std::make_unique<SpringDamper>(name, std::move(a), std::move(b), stiff, damp, free));
     } else {  // hertz_contact (schema enum)
       for (const char* key : {"stiffness", "damping", "free_length"}) forbid(key);
@@ -253,7 +253,7 @@ void addForceElements(const YamlDocument& doc, const std::map<std::string, int>&
       }
       if (!(l0 > 0.0))
         throw inputError(doc, F["b"], k + ".b", "the two sphere centres coincide initially");
-      sys.addLineForce(
+      sys.addForceElement(
           std::make_unique<HertzPointContact>(name, std::move(a), std::move(b), s[0], s[1]));
     }
   }

@@ -7,19 +7,18 @@
 #include "common/base/error.h"
 #include "runtime/bodies/marker_kinematics.h"
 #include "runtime/system/multibody_system.h"
+#include "runtime/system/system_state.h"
 
 namespace ffriga {
 
 void MultibodySystem::addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,
                                     std::vector<LineForceState>* states) const {
   if (states) states->assign(line_forces_.size(), LineForceState());
-  for (std::size_t f = 0; f < line_forces_.size(); ++f) {
-    const LineForce& e = *line_forces_[f];
-    const int a = e.end(0).body, b = e.end(1).body;
-    e.addForces(a >= 0 ? y + pos_offset_[a] : nullptr, a >= 0 ? y + vel_offset_[a] : nullptr,
-                y + pos_offset_[b], y + vel_offset_[b], a >= 0 ? h[a].data() : nullptr, h[b].data(),
-                states ? &(*states)[f] : nullptr);
-  }
+  const SystemState at(*this, y);
+  ForceStates out;
+  out.line_forces = states;
+  for (const auto& e : forces_)
+    if (!e->hasStiffnessTerms()) e->addForces(at, h, out);
 }
 
 void MultibodySystem::sensorState(const double* y, int s, Eigen::Vector3d& position,

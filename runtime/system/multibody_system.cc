@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "common/base/error.h"
+#include "runtime/system/system_state.h"
 
 namespace ffriga {
 
@@ -13,21 +14,31 @@ int MultibodySystem::addBody(std::unique_ptr<BodyModel> body) {
   return numBodies() - 1;
 }
 
-void MultibodySystem::addContact(std::unique_ptr<ContactPair> pair) {
-  FFRIGA_CHECK(pair->bodyA() < numBodies() && pair->bodyB() < numBodies(), "contact body index");
-  contacts_.push_back(std::move(pair));
+void MultibodySystem::addForceElement(std::unique_ptr<ForceElement> element) {
+  FFRIGA_CHECK(element->bodyA() < numBodies() && element->bodyB() < numBodies(),
+               "force element '" << element->name() << "': body index");
+  if (auto* pair = dynamic_cast<ContactPair*>(element.get())) {
+    pair->setSlot(numContacts());
+    contacts_.push_back(pair);
+  } else if (auto* line = dynamic_cast<LineForce*>(element.get())) {
+    line->setSlot(numLineForces());
+    line_forces_.push_back(line);
+  } else {
+    FFRIGA_CHECK(false, "force element '" << element->name() << "' of an unknown kind");
+  }
+  forces_.push_back(std::move(element));
+}
+
+bool MultibodySystem::hasQuotientForces() const {
+  for (const auto& e : forces_)
+    if (!e->hasStiffnessTerms()) return true;
+  return false;
 }
 
 void MultibodySystem::addJoint(std::unique_ptr<Joint> joint) {
   for (int i = 0; i < 2; ++i) FFRIGA_CHECK(joint->end(i).body < numBodies(), "joint body index");
   num_constraints_ += joint->numEquations();
   joints_.push_back(std::move(joint));
-}
-
-void MultibodySystem::addLineForce(std::unique_ptr<LineForce> force) {
-  for (int i = 0; i < 2; ++i)
-    FFRIGA_CHECK(force->end(i).body < numBodies(), "force element body index");
-  line_forces_.push_back(std::move(force));
 }
 
 void MultibodySystem::layout() {
@@ -49,18 +60,13 @@ void MultibodySystem::layout() {
 void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                                     std::vector<ContactState>* states) {
   h.resize(bodies_.size());
-  std::vector<BodyPose> poses(bodies_.size());
-  for (int b = 0; b < numBodies(); ++b) {
-    h[b].setZero(bodies_[b]->numVelocities());
-    if (!contacts_.empty()) poses[b] = bodies_[b]->pose(y + pos_offset_[b]);
-  }
+  for (int b = 0; b < numBodies(); ++b) h[b].setZero(bodies_[b]->numVelocities());
   if (states) states->assign(contacts_.size(), ContactState());
-  for (std::size_t c = 0; c < contacts_.size(); ++c) {
-    ContactPair& pair = *contacts_[c];
-    const int a = pair.bodyA(), b = pair.bodyB();
-    pair.evaluate(*bodies_[a], poses[a], *bodies_[b], poses[b], h[a].data(), h[b].data(),
-                  states ? &(*states)[c] : nullptr);
-  }
+  const SystemState at(*this, y);
+  ForceStates out;
+  out.contacts = states;
+  for (const auto& e : forces_)
+    if (e->hasStiffnessTerms()) e->addForces(at, h, out);
 }
 
 void MultibodySystem::rhs(double, const double* y, double* ydot) {
@@ -109,7 +115,7 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
                                double* Jdata) {
   // Joints and force elements couple the bodies in ways the per-body quotients below do
   // not see: the integrator's own difference quotients of the whole rhs() then serve.
-  if (!joints_.empty() || !line_forces_.empty()) return false;
+  if (!joints_.empty() || hasQuotientForces()) return false;
   const int n = size_;
   Eigen::Map<Eigen::MatrixXd> J(Jdata, n, n);
   contactForces(y, h_, nullptr);
@@ -127,8 +133,8 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
   // Contact stiffness: dh_X/ds_p(Y) = -k bv_X bp_Y^T (signs of the target side folded in).
   bool any = false;
   std::vector<Eigen::MatrixXd> dh(numBodies());
-  for (const auto& pair : contacts_) {
-    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+  for (const auto& element : forces_) {
+    for (const StiffnessTerm& t : element->stiffnessTerms()) {
       const int bodiesOf[2] = {t.body_c, t.body_t};
       const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
       const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
@@ -175,7 +181,7 @@ Eigen::VectorXd solveMassBlocks(const Eigen::MatrixXd& C, const Eigen::MatrixXd&
 int MultibodySystem::structuredRank() const {
   int r = 0;
   for (const auto& b : bodies_) r += b->numRigidPositions() + 2 * b->numRigidVelocities();
-  for (const auto& pair : contacts_) r += static_cast<int>(pair->stiffnessTerms().size());
+  for (const auto& element : forces_) r += static_cast<int>(element->stiffnessTerms().size());
   r += num_constraints_;  // the joints' projection of the elastic columns (below)
   return r;
 }
@@ -246,8 +252,8 @@ void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
   auto solveMass = [&](int b, const Eigen::VectorXd& x) {
     return solveMassBlocks(C[b], Sinv[b], bodies_[b]->numRigidVelocities(), x);
   };
-  for (const auto& pair : contacts_) {
-    for (const ContactStiffnessTerm& t : pair->stiffnessTerms()) {
+  for (const auto& element : forces_) {
+    for (const StiffnessTerm& t : element->stiffnessTerms()) {
       const int bc = t.body_c, bt = t.body_t;
       J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
       J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
@@ -261,7 +267,7 @@ void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
 bool MultibodySystem::structuredJacobian(double, const double* y, const double* scale,
                                          StructuredJacobian& J) {
   // Force elements without joints: as jacobian() (their stiffness is not in the terms).
-  if (joints_.empty() && !line_forces_.empty()) return false;
+  if (joints_.empty() && hasQuotientForces()) return false;
   for (const auto& b : bodies_)
     if (!b->diagonalElasticity()) return false;
   const int n = size_;
@@ -394,7 +400,7 @@ SystemEnergies MultibodySystem::energies(const double* y) {
     e.elastic += bodies_[b]->elasticEnergy(sp);
     e.gravity += bodies_[b]->gravityEnergy(sp, gravity_);
   }
-  if (!contacts_.empty()) {
+  if (numContacts() > 0) {
     std::vector<ContactState> states;
     std::vector<Eigen::VectorXd> h;
     contactForces(y, h, &states);

@@ -7,8 +7,9 @@
 //   y = [s_p(body 0), s_p(body 1), ..., s_v(body 0), s_v(body 1), ...],
 //   dy/dt = [position rates; accelerations from M(q) dz = h_d + h_b - h_omega - h_e + J^T lambda].
 //
-// Contact forces and force elements are the discrete forces h_d (Eq. 18); each adds equal
-// and opposite forces to its two bodies.
+// Force elements (runtime/forces/force_element.h: contact pairs, spring-dampers, Hertz point
+// contact) are the discrete forces h_d (Eq. 18); each adds equal and opposite forces to its
+// two bodies, in the order they were added.
 //
 // Joints (system/constrained_motion.cc). The constraints g(s_p) = 0 are imposed at the
 // acceleration level, J dz/dt + bias = 0, with multipliers lambda found in every right-hand
@@ -71,9 +72,9 @@ struct ConstraintRows {
 class MultibodySystem : public OdeSystem {
  public:
   int addBody(std::unique_ptr<BodyModel> body);  // returns the body's index
-  void addContact(std::unique_ptr<ContactPair> pair);
+  // A force element of any kind (a contact pair, a line force); its slot among its kind.
+  void addForceElement(std::unique_ptr<ForceElement> element);
   void addJoint(std::unique_ptr<Joint> joint);
-  void addLineForce(std::unique_ptr<LineForce> force);
   void addSensor(Sensor sensor) { sensors_.push_back(std::move(sensor)); }
   int numSensors() const { return static_cast<int>(sensors_.size()); }
   const Sensor& sensor(int s) const { return sensors_[s]; }
@@ -86,6 +87,9 @@ class MultibodySystem : public OdeSystem {
   int numBodies() const { return static_cast<int>(bodies_.size()); }
   const BodyModel& body(int b) const { return *bodies_[b]; }
   BodyModel& body(int b) { return *bodies_[b]; }
+  int numForceElements() const { return static_cast<int>(forces_.size()); }
+  const ForceElement& forceElement(int i) const { return *forces_[i]; }
+  // The force elements by kind: contact pairs, line forces (each in the order added).
   int numContacts() const { return static_cast<int>(contacts_.size()); }
   const ContactPair& contact(int c) const { return *contacts_[c]; }
   ContactPair& contact(int c) { return *contacts_[c]; }
@@ -151,7 +155,9 @@ class MultibodySystem : public OdeSystem {
   // stiffness then enters through the rigid columns only).
   bool structuredJacobian(double t, const double* y, const double* scale,
                           StructuredJacobian& J) override;
-  // Contact forces at y (generalised, per body) and the pairs' diagnostics (contact_pair.h).
+  // The generalised forces at y (per body, from zero) of the force elements with stiffness
+  // terms (the contact pairs, held fixed in difference quotients) and the pairs' diagnostics
+  // (contact_pair.h).
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<ContactState>* states);
   SystemEnergies energies(const double* y);
@@ -165,9 +171,10 @@ class MultibodySystem : public OdeSystem {
 
  private:
   std::vector<std::unique_ptr<BodyModel>> bodies_;
-  std::vector<std::unique_ptr<ContactPair>> contacts_;
+  std::vector<std::unique_ptr<ForceElement>> forces_;  // in the order added
+  std::vector<ContactPair*> contacts_;                 // the contact pairs among them
   std::vector<std::unique_ptr<Joint>> joints_;
-  std::vector<std::unique_ptr<LineForce>> line_forces_;
+  std::vector<LineForce*> line_forces_;                // the line forces among them
   std::vector<Sensor> sensors_;
   int num_constraints_ = 0;
   Eigen::VectorXd lambda_;  // multipliers of the latest rhs()
@@ -182,9 +189,13 @@ class MultibodySystem : public OdeSystem {
   void evaluateRates(const double* y, double* ydot, std::vector<ContactState>* states,
                      std::vector<LineForceState>* lineStates);
   int totalVelocities() const { return size_ - (bodies_.empty() ? 0 : vel_offset_[0]); }
-  // Adds the force elements' generalised forces at y to h (states: optional diagnostics).
+  // Adds the generalised forces at y of the force elements without stiffness terms (line
+  // forces, evaluated in difference quotients) to h (states: optional diagnostics).
   void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<LineForceState>* states) const;
+  // Whether some force element has no stiffness terms (its stiffness only through difference
+  // quotients of the rates).
+  bool hasQuotientForces() const;
   // X = M^-1 J^T (inverseMassTimes) and the factor of S = J X; ComputeError if singular.
   void constraintMobility(const double* y, const Eigen::MatrixXd& J, Eigen::MatrixXd& X,
                           Eigen::LLT<Eigen::MatrixXd>& S) const;

@@ -53,8 +53,8 @@ std::vector<Coordinate> quasiStaticCoordinates(const MultibodySystem& system,
 void contactStiffnessColumns(const MultibodySystem& system, const std::vector<Coordinate>& list,
                              std::vector<Eigen::VectorXd>& columns, std::vector<double>& weights) {
   const int n = static_cast<int>(list.size());
-  for (int c = 0; c < system.numContacts(); ++c) {
-    for (const ContactStiffnessTerm& t : system.contact(c).stiffnessTerms()) {
+  for (int e = 0; e < system.numForceElements(); ++e) {
+    for (const StiffnessTerm& t : system.forceElement(e).stiffnessTerms()) {
       Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
       bool any = false;
       for (int j = 0; j < n; ++j) {

@@ -187,7 +187,7 @@ TEST_CASE("3D contact in time: two tumbling flexible bodies collide, momenta are
   sys.addBody(std::make_unique<FloatingBody3d>("B", b));
   ContactOptions opt;
   opt.penalty = 1e5;  // N/m^3: ~1e3 N/m per collocation point of weight 1e-2 m^2
-  sys.addContact(std::make_unique<ContactPair>("A-B", 0, sys.body(0), 0, 1, sys.body(1), 0, opt));
+  sys.addForceElement(std::make_unique<ContactPair>("A-B", 0, sys.body(0), 0, 1, sys.body(1), 0, opt));
   const int n = sys.size();
   Eigen::VectorXd y0 = Eigen::VectorXd::Zero(n);
   // Positions: r, quaternion, q; velocities: v, w, qdot (body components).
