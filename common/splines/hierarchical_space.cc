@@ -34,6 +34,23 @@ void forEachIndex(const std::array<int, 3>& lo, const std::array<int, 3>& n, F f
       for (i[0] = lo[0]; i[0] < lo[0] + n[0]; ++i[0]) f(i);
 }
 
+// Spans of the ancestors of a level-L cell with the given spans: anc[m] = the level-m cell
+// that contains the cell's midpoint, m = 0 .. L (anc[L] = spans).
+std::vector<std::array<int, 3>> ancestorSpans(const std::vector<std::vector<KnotVector>>& knots,
+                                              int d, int L, const std::array<int, 3>& spans) {
+  std::vector<std::array<int, 3>> anc(L + 1);
+  anc[L] = spans;
+  std::array<double, 3> mid{0, 0, 0};
+  for (int a = 0; a < d; ++a) {
+    const KnotVector& U = knots[L][a];
+    mid[a] = 0.5 * (U[spans[a]] + U[spans[a] + 1]);
+  }
+  for (int m = L - 1; m >= 0; --m) {
+    for (int a = 0; a < d; ++a) anc[m][a] = knots[m][a].findSpan(mid[a]);
+  }
+  return anc;
+}
+
 }  // namespace
 
 std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, int levels) {
@@ -287,99 +304,98 @@ void HierarchicalSpace::buildElements() {
   for (int l = 0; l < nlvl_; ++l) {
     for (int a = 0; a < d_; ++a) cellSpans_[l][a] = knots_[l][a].elementSpans();
   }
-  const auto& spans = cellSpans_;
   for (int l = 0; l < nlvl_; ++l) {
     levelElemStart_.push_back(static_cast<int>(elements_.size()));
-    LevelIndex& idx = elemId_[l];
-    auto inside = [&](int level, int region, int a, int s) {
-      return knots_[level][a][s] >= regions_[region].lower[a] &&
-             knots_[level][a][s + 1] <= regions_[region].upper[a];
-    };
-    for (int a = 0; a < d_; ++a) {
-      int lo = -1, hi = -2;
-      for (int c = 0; c < static_cast<int>(spans[l][a].size()); ++c) {
-        if (inside(l, l, a, spans[l][a][c])) {
-          if (lo < 0) lo = c;
-          hi = c;
-        }
-      }
-      idx.lo[a] = lo;
-      idx.n[a] = hi - lo + 1;
-    }
-    idx.id.assign(static_cast<std::size_t>(idx.n[0]) * idx.n[1] * idx.n[2], -1);
-    forEachIndex(idx.lo, idx.n, [&](const std::array<int, 3>& c) {
-      Element el;
-      el.level = l;
-      bool inFiner = l + 1 < nlvl_;
-      for (int a = 0; a < d_; ++a) {
-        el.spans[a] = spans[l][a][c[a]];
-        inFiner = inFiner && inside(l, l + 1, a, el.spans[a]);
-      }
-      if (inFiner) return;
-      int k = 0;
-      for (int a = 2; a >= 0; --a) k = k * idx.n[a] + (c[a] - idx.lo[a]);
-      idx.id[k] = static_cast<int>(elements_.size());
-      elements_.push_back(std::move(el));
-    });
+    buildLevelElements(l);
   }
   levelElemStart_.push_back(static_cast<int>(elements_.size()));
+  for (Element& el : elements_) buildExtraction(el);
+}
 
-  // Extraction operators: E_m maps level-m local coefficients to level-L local ones,
-  // E_L = I, E_{m} = E_{m+1} Mask_{m+1} T_{m+1} (Mask: THB truncation, identity for HB).
-  for (Element& el : elements_) {
-    const int L = el.level;
-    std::vector<std::array<int, 3>> anc(L + 1);
-    anc[L] = el.spans;
-    std::array<double, 3> mid{0, 0, 0};
-    for (int a = 0; a < d_; ++a) {
-      const KnotVector& U = knots_[L][a];
-      mid[a] = 0.5 * (U[el.spans[a]] + U[el.spans[a] + 1]);
-    }
-    for (int m = L - 1; m >= 0; --m) {
-      for (int a = 0; a < d_; ++a) anc[m][a] = knots_[m][a].findSpan(mid[a]);
-    }
-    std::vector<std::pair<int, Eigen::VectorXd>> rows;
-    Eigen::MatrixXd E = Eigen::MatrixXd::Identity(nloc_, nloc_);
-    for (int m = L; m >= 0; --m) {
-      if (m < L) {
-        Eigen::MatrixXd MT = localRefinement(m + 1, anc[m + 1], anc[m]);
-        if (options_.truncated) {
-          int r = 0;
-          forEachIndex({0, 0, 0}, {p_[0] + 1, d_ > 1 ? p_[1] + 1 : 1, d_ > 2 ? p_[2] + 1 : 1},
-                       [&](const std::array<int, 3>& j) {
-                         std::array<int, 3> i{0, 0, 0};
-                         for (int a = 0; a < d_; ++a) i[a] = anc[m + 1][a] - p_[a] + j[a];
-                         if (supportInRegion(m + 1, m + 1, i)) MT.row(r).setZero();
-                         ++r;
-                       });
-        }
-        E = E.lazyProduct(MT).eval();  // small: no (OpenMP-parallel) GEMM
+void HierarchicalSpace::buildLevelElements(int l) {
+  const auto& spans = cellSpans_;
+  LevelIndex& idx = elemId_[l];
+  auto inside = [&](int level, int region, int a, int s) {
+    return knots_[level][a][s] >= regions_[region].lower[a] &&
+           knots_[level][a][s + 1] <= regions_[region].upper[a];
+  };
+  for (int a = 0; a < d_; ++a) {
+    int lo = -1, hi = -2;
+    for (int c = 0; c < static_cast<int>(spans[l][a].size()); ++c) {
+      if (inside(l, l, a, spans[l][a][c])) {
+        if (lo < 0) lo = c;
+        hi = c;
       }
-      int r = 0;
-      forEachIndex({0, 0, 0}, {p_[0] + 1, d_ > 1 ? p_[1] + 1 : 1, d_ > 2 ? p_[2] + 1 : 1},
-                   [&](const std::array<int, 3>& j) {
-                     std::array<int, 3> i{0, 0, 0};
-                     for (int a = 0; a < d_; ++a) i[a] = anc[m][a] - p_[a] + j[a];
-                     const int f = funcId_[m].at(i);
-                     // Knot insertion coefficients are non-negative: a column is zero only
-                     // if the function vanishes on the element (exactly).
-                     if (f >= 0 && E.col(r).cwiseAbs().maxCoeff() > 0.0) {
-                       rows.emplace_back(f, E.col(r));
-                     }
-                     ++r;
-                   });
     }
-    std::sort(rows.begin(), rows.end(),
-              [](const auto& x, const auto& y) { return x.first < y.first; });
-    el.extraction.resize(rows.size(), nloc_);
-    for (std::size_t k = 0; k < rows.size(); ++k) {
-      el.functions.push_back(rows[k].first);
-      el.extraction.row(k) = rows[k].second.transpose();
-    }
-    el.identity = static_cast<int>(rows.size()) == nloc_ &&
-                  el.extraction == Eigen::MatrixXd::Identity(nloc_, nloc_);
-    if (el.identity) el.extraction.resize(0, 0);  // elementExtraction() returns identity_
+    idx.lo[a] = lo;
+    idx.n[a] = hi - lo + 1;
   }
+  idx.id.assign(static_cast<std::size_t>(idx.n[0]) * idx.n[1] * idx.n[2], -1);
+  forEachIndex(idx.lo, idx.n, [&](const std::array<int, 3>& c) {
+    Element el;
+    el.level = l;
+    bool inFiner = l + 1 < nlvl_;
+    for (int a = 0; a < d_; ++a) {
+      el.spans[a] = spans[l][a][c[a]];
+      inFiner = inFiner && inside(l, l + 1, a, el.spans[a]);
+    }
+    if (inFiner) return;
+    int k = 0;
+    for (int a = 2; a >= 0; --a) k = k * idx.n[a] + (c[a] - idx.lo[a]);
+    idx.id[k] = static_cast<int>(elements_.size());
+    elements_.push_back(std::move(el));
+  });
+}
+
+void HierarchicalSpace::truncateRefinement(int level, const std::array<int, 3>& spans,
+                                           Eigen::MatrixXd& MT) const {
+  int r = 0;
+  forEachIndex({0, 0, 0}, {p_[0] + 1, d_ > 1 ? p_[1] + 1 : 1, d_ > 2 ? p_[2] + 1 : 1},
+               [&](const std::array<int, 3>& j) {
+                 std::array<int, 3> i{0, 0, 0};
+                 for (int a = 0; a < d_; ++a) i[a] = spans[a] - p_[a] + j[a];
+                 if (supportInRegion(level, level, i)) MT.row(r).setZero();
+                 ++r;
+               });
+}
+
+void HierarchicalSpace::buildExtraction(Element& el) const {
+  // E_m maps level-m local coefficients to level-L local ones,
+  // E_L = I, E_{m} = E_{m+1} Mask_{m+1} T_{m+1} (Mask: THB truncation, identity for HB).
+  const int L = el.level;
+  const std::vector<std::array<int, 3>> anc = ancestorSpans(knots_, d_, L, el.spans);
+  std::vector<std::pair<int, Eigen::VectorXd>> rows;
+  Eigen::MatrixXd E = Eigen::MatrixXd::Identity(nloc_, nloc_);
+  for (int m = L; m >= 0; --m) {
+    if (m < L) {
+      Eigen::MatrixXd MT = localRefinement(m + 1, anc[m + 1], anc[m]);
+      if (options_.truncated) truncateRefinement(m + 1, anc[m + 1], MT);
+      E = E.lazyProduct(MT).eval();  // small: no (OpenMP-parallel) GEMM
+    }
+    int r = 0;
+    forEachIndex({0, 0, 0}, {p_[0] + 1, d_ > 1 ? p_[1] + 1 : 1, d_ > 2 ? p_[2] + 1 : 1},
+                 [&](const std::array<int, 3>& j) {
+                   std::array<int, 3> i{0, 0, 0};
+                   for (int a = 0; a < d_; ++a) i[a] = anc[m][a] - p_[a] + j[a];
+                   const int f = funcId_[m].at(i);
+                   // Knot insertion coefficients are non-negative: a column is zero only
+                   // if the function vanishes on the element (exactly).
+                   if (f >= 0 && E.col(r).cwiseAbs().maxCoeff() > 0.0) {
+                     rows.emplace_back(f, E.col(r));
+                   }
+                   ++r;
+                 });
+  }
+  std::sort(rows.begin(), rows.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
+  el.extraction.resize(rows.size(), nloc_);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    el.functions.push_back(rows[k].first);
+    el.extraction.row(k) = rows[k].second.transpose();
+  }
+  el.identity = static_cast<int>(rows.size()) == nloc_ &&
+                el.extraction == Eigen::MatrixXd::Identity(nloc_, nloc_);
+  if (el.identity) el.extraction.resize(0, 0);  // elementExtraction() returns identity_
 }
 
 void HierarchicalSpace::buildGeometry() {

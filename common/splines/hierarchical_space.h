@@ -161,6 +161,13 @@ class HierarchicalSpace : public SplineSpace {
   bool supportInRegion(int level, int region, const std::array<int, 3>& i) const;
   void buildFunctions();
   void buildElements();
+  // The elements of level l: the cells of Omega^l outside Omega^{l+1}, with their ids.
+  void buildLevelElements(int l);
+  // Element el's active functions and extraction operator C_e (rows: functions, sorted).
+  void buildExtraction(Element& el) const;
+  // THB truncation of T^level's local block MT: zeroes the rows of the level's functions on
+  // the cell `spans` whose support lies in Omega^level.
+  void truncateRefinement(int level, const std::array<int, 3>& spans, Eigen::MatrixXd& MT) const;
   void buildGeometry();
   Eigen::MatrixXd localRefinement(int level, const std::array<int, 3>& childSpans,
                                   const std::array<int, 3>& parentSpans) const;
