@@ -173,6 +173,149 @@ void scatterOwnedColumns(const ElementMatrices& em, const DofMap& dofs, int s, i
   }
 }
 
+// The node adjacency: for every node the nodes that share an element with it (sorted),
+// from the functions of each element (constant on an element, taken at its centre).
+std::vector<std::vector<int>> nodeAdjacency(const SplineSpace& space, const DofMap& dofs) {
+  const int d = space.paramDim();
+  const int ncp = space.numFunctions();
+  const int ne = space.numElements();
+  std::vector<std::vector<int>> elementNodes(ne);
+  std::vector<std::vector<int>> nodeElements(ncp);
+  PatchBasis basis;
+  for (int e = 0; e < ne; ++e) {
+    const ElementBox box = space.element(e);
+    double xi[3];
+    for (int a = 0; a < d; ++a) xi[a] = 0.5 * (box.lower[a] + box.upper[a]);
+    space.elementBasis(e, xi, 0, basis);
+    for (int k : basis.index) elementNodes[e].push_back(dofs.node(k));
+    std::sort(elementNodes[e].begin(), elementNodes[e].end());
+    elementNodes[e].erase(std::unique(elementNodes[e].begin(), elementNodes[e].end()),
+                          elementNodes[e].end());
+    for (int n : elementNodes[e]) nodeElements[n].push_back(e);
+  }
+  std::vector<std::vector<int>> adjacency(ncp);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int n = 0; n < ncp; ++n) {
+    auto& adj = adjacency[n];
+    for (int e : nodeElements[n])
+      adj.insert(adj.end(), elementNodes[e].begin(), elementNodes[e].end());
+    std::sort(adj.begin(), adj.end());
+    adj.erase(std::unique(adj.begin(), adj.end()), adj.end());
+  }
+  return adjacency;
+}
+
+// The pattern of K: the node adjacency with the DOFs of each node (the nodes' own points).
+SparseMatrix stiffnessPattern(const std::vector<std::vector<int>>& adjacency, const DofMap& dofs,
+                              int ncp, int s) {
+  std::vector<int> dofIndex(static_cast<std::size_t>(ncp) * s);
+  for (int k = 0; k < ncp; ++k) {
+    for (int c = 0; c < s; ++c) dofIndex[k * s + c] = dofs.node(k) == k ? dofs.dof(k, c) : -1;
+  }
+  return buildPattern(adjacency, s, dofs.numDofs(), dofIndex);
+}
+
+// The pattern of Ms: the same node adjacency with one component; columns of tied points
+// stay empty.
+SparseMatrix scalarMassPattern(const std::vector<std::vector<int>>& adjacency, const DofMap& dofs,
+                               int ncp) {
+  std::vector<int> outer(ncp + 1, 0), inner;
+  for (int b = 0; b < ncp; ++b) {
+    if (dofs.node(b) == b) {
+      for (int a : adjacency[b]) {
+        if (a > b) break;
+        inner.push_back(a);
+      }
+    }
+    outer[b + 1] = static_cast<int>(inner.size());
+  }
+  std::vector<double> values(inner.size(), 0.0);
+  return Eigen::Map<const SparseMatrix>(ncp, ncp, static_cast<int>(inner.size()), outer.data(),
+                                        inner.data(), values.data());
+}
+
+// Gauss-Legendre rules on [-1, 1] per direction and the material, for every element.
+QuadratureSetup quadratureSetup(const ElasticityModel& model, int d, int s) {
+  std::array<QuadratureRule, 3> rules;
+  int ng = 1;
+  for (int a = 0; a < d; ++a) {
+    FFRIGA_CHECK(model.gauss_points[a] >= 1, "gauss_points[" << a << "] must be >= 1");
+    rules[a] = gaussLegendre(model.gauss_points[a]);
+    ng *= model.gauss_points[a];
+  }
+  IsotropicMaterial material;
+  material.youngs_modulus = model.youngs_modulus;
+  material.poisson_ratio = model.poisson_ratio;
+  QuadratureSetup setup;
+  setup.d = d;
+  setup.s = s;
+  setup.ng = ng;
+  setup.rules = rules;
+  setup.material = material;
+  return setup;
+}
+
+// K and Ms: the element matrices, then their scatter into the patterns. Throws ComputeError
+// if the geometry map is singular at a Gauss point.
+void assembleElements(const SplineSpace& space, const DofMap& dofs, const ElasticityModel& model,
+                      const QuadratureSetup& setup, ElasticSystem& sys) {
+  const int ncp = space.numFunctions();
+  const int ne = space.numElements();
+  // Elements in chunks of a fixed size (independent of the thread count): the element
+  // matrices of a chunk are computed in parallel, then scattered by column owners.
+  // 256 elements of degree 2 in 3D hold 15 MB of element matrices (84 MB for degree 3).
+  const int chunk = 256;
+  std::vector<ElementMatrices> em(static_cast<std::size_t>(std::min(chunk, std::max(ne, 1))));
+  int singular = -1;
+  for (int e0 = 0; e0 < ne && singular < 0; e0 += chunk) {
+    const int count = std::min(chunk, ne - e0);
+#pragma omp parallel
+    {
+      QuadratureWork w;
+#pragma omp for schedule(dynamic, 8)
+      for (int i = 0; i < count; ++i) {
+        em[i].singular = false;
+        gaussPointTables(space, model, setup, e0 + i, w, em[i]);
+        if (!em[i].singular && !em[i].functions.empty()) elementMatrices(model, setup, w, em[i]);
+      }
+    }
+    for (int i = 0; i < count && singular < 0; ++i)
+      if (em[i].singular) singular = e0 + i;
+    if (singular >= 0) break;
+#pragma omp parallel
+    {
+      const int nt = omp_get_num_threads(), t = omp_get_thread_num();
+      const int begin = static_cast<int>(static_cast<long long>(ncp) * t / nt);
+      const int end = static_cast<int>(static_cast<long long>(ncp) * (t + 1) / nt);
+      for (int i = 0; i < count; ++i) scatterOwnedColumns(em[i], dofs, setup.s, begin, end, sys);
+    }
+  }
+  if (singular >= 0) {
+    throw ComputeError(Str() << "the geometry map is singular (det J = 0) at a Gauss point of "
+                             << "element " << singular
+                             << "; the patch is degenerate inside an element");
+  }
+}
+
+// M(dof(a, c), dof(b, c)) = Ms(a, b): same pattern as K, filled from Ms, without the
+// couplings between different components (zero in M).
+void consistentMass(const DofMap& dofs, int ncp, int s, ElasticSystem& sys) {
+  sys.M = sys.K;
+  sys.M.coeffs().setZero();
+  for (int b = 0; b < ncp; ++b) {
+    for (SparseMatrix::InnerIterator it(sys.Ms, b); it; ++it) {
+      const int a = static_cast<int>(it.row());
+      for (int c = 0; c < s; ++c) {
+        const int row = dofs.dof(a, c), col = dofs.dof(b, c);
+        if (row < 0 || col < 0) continue;
+        addAt(sys.M, std::min(row, col), std::max(row, col), it.value());
+      }
+    }
+  }
+  sys.M.prune([](int, int, double v) { return v != 0.0; });
+  sys.M.makeCompressed();
+}
+
 }  // namespace
 
 ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
@@ -180,131 +323,18 @@ ElasticSystem assembleElasticity(const SplineSpace& space, const DofMap& dofs,
   const int d = space.paramDim();
   const int s = space.spaceDim();
   const int ncp = space.numFunctions();
-  const int ne = space.numElements();
   FFRIGA_CHECK(d == s && (s == 2 || s == 3),
                "elasticity needs d = s = 2 or 3, found d = " << d << ", s = " << s);
   FFRIGA_CHECK(!model.axisymmetric || s == 2, "axisymmetric models are 2D");
-  IsotropicMaterial material;
-  material.youngs_modulus = model.youngs_modulus;
-  material.poisson_ratio = model.poisson_ratio;
-
-  // Functions per element (constant on an element) and node adjacency.
-  std::vector<std::vector<int>> elementNodes(ne);
-  {
-    std::vector<std::vector<int>> nodeElements(ncp);
-    PatchBasis basis;
-    for (int e = 0; e < ne; ++e) {
-      const ElementBox box = space.element(e);
-      double xi[3];
-      for (int a = 0; a < d; ++a) xi[a] = 0.5 * (box.lower[a] + box.upper[a]);
-      space.elementBasis(e, xi, 0, basis);
-      for (int k : basis.index) elementNodes[e].push_back(dofs.node(k));
-      std::sort(elementNodes[e].begin(), elementNodes[e].end());
-      elementNodes[e].erase(std::unique(elementNodes[e].begin(), elementNodes[e].end()),
-                            elementNodes[e].end());
-      for (int n : elementNodes[e]) nodeElements[n].push_back(e);
-    }
-    std::vector<std::vector<int>> adjacency(ncp);
-#pragma omp parallel for schedule(dynamic, 64)
-    for (int n = 0; n < ncp; ++n) {
-      auto& adj = adjacency[n];
-      for (int e : nodeElements[n])
-        adj.insert(adj.end(), elementNodes[e].begin(), elementNodes[e].end());
-      std::sort(adj.begin(), adj.end());
-      adj.erase(std::unique(adj.begin(), adj.end()), adj.end());
-    }
-    elementNodes.clear();
-    ElasticSystem sys;
-    std::vector<int> dofIndex(static_cast<std::size_t>(ncp) * s), nodeIndex(ncp);
-    for (int k = 0; k < ncp; ++k) {
-      nodeIndex[k] = dofs.node(k) == k ? k : -1;
-      for (int c = 0; c < s; ++c) dofIndex[k * s + c] = dofs.node(k) == k ? dofs.dof(k, c) : -1;
-    }
-    sys.K = buildPattern(adjacency, s, dofs.numDofs(), dofIndex);
-    // Ms: the same node adjacency with one component; columns of tied points stay empty.
-    {
-      std::vector<int> outer(ncp + 1, 0), inner;
-      for (int b = 0; b < ncp; ++b) {
-        if (nodeIndex[b] >= 0) {
-          for (int a : adjacency[b]) {
-            if (a > b) break;
-            inner.push_back(a);
-          }
-        }
-        outer[b + 1] = static_cast<int>(inner.size());
-      }
-      std::vector<double> values(inner.size(), 0.0);
-      sys.Ms = Eigen::Map<const SparseMatrix>(ncp, ncp, static_cast<int>(inner.size()),
-                                              outer.data(), inner.data(), values.data());
-    }
-    adjacency.clear();
-
-    // Quadrature rules on [-1, 1].
-    std::array<QuadratureRule, 3> rules;
-    int ng = 1;
-    for (int a = 0; a < d; ++a) {
-      FFRIGA_CHECK(model.gauss_points[a] >= 1, "gauss_points[" << a << "] must be >= 1");
-      rules[a] = gaussLegendre(model.gauss_points[a]);
-      ng *= model.gauss_points[a];
-    }
-    QuadratureSetup setup;
-    setup.d = d;
-    setup.s = s;
-    setup.ng = ng;
-    setup.rules = rules;
-    setup.material = material;
-    // Elements in chunks of a fixed size (independent of the thread count): the element
-    // matrices of a chunk are computed in parallel, then scattered by column owners.
-    // 256 elements of degree 2 in 3D hold 15 MB of element matrices (84 MB for degree 3).
-    const int chunk = 256;
-    std::vector<ElementMatrices> em(static_cast<std::size_t>(std::min(chunk, std::max(ne, 1))));
-    int singular = -1;
-    for (int e0 = 0; e0 < ne && singular < 0; e0 += chunk) {
-      const int count = std::min(chunk, ne - e0);
-#pragma omp parallel
-      {
-        QuadratureWork w;
-#pragma omp for schedule(dynamic, 8)
-        for (int i = 0; i < count; ++i) {
-          em[i].singular = false;
-          gaussPointTables(space, model, setup, e0 + i, w, em[i]);
-          if (!em[i].singular && !em[i].functions.empty()) elementMatrices(model, setup, w, em[i]);
-        }
-      }
-      for (int i = 0; i < count && singular < 0; ++i)
-        if (em[i].singular) singular = e0 + i;
-      if (singular >= 0) break;
-#pragma omp parallel
-      {
-        const int nt = omp_get_num_threads(), t = omp_get_thread_num();
-        const int begin = static_cast<int>(static_cast<long long>(ncp) * t / nt);
-        const int end = static_cast<int>(static_cast<long long>(ncp) * (t + 1) / nt);
-        for (int i = 0; i < count; ++i) scatterOwnedColumns(em[i], dofs, s, begin, end, sys);
-      }
-    }
-    if (singular >= 0) {
-      throw ComputeError(Str() << "the geometry map is singular (det J = 0) at a Gauss point of "
-                               << "element " << singular
-                               << "; the patch is degenerate inside an element");
-    }
-    // M(dof(a, c), dof(b, c)) = Ms(a, b): same pattern as K, filled from Ms.
-    sys.M = sys.K;
-    sys.M.coeffs().setZero();
-    for (int b = 0; b < ncp; ++b) {
-      for (SparseMatrix::InnerIterator it(sys.Ms, b); it; ++it) {
-        const int a = static_cast<int>(it.row());
-        for (int c = 0; c < s; ++c) {
-          const int row = dofs.dof(a, c), col = dofs.dof(b, c);
-          if (row < 0 || col < 0) continue;
-          addAt(sys.M, std::min(row, col), std::max(row, col), it.value());
-        }
-      }
-    }
-    // Drop the couplings between different components (zero in M).
-    sys.M.prune([](int, int, double v) { return v != 0.0; });
-    sys.M.makeCompressed();
-    return sys;
-  }
+  std::vector<std::vector<int>> adjacency = nodeAdjacency(space, dofs);
+  ElasticSystem sys;
+  sys.K = stiffnessPattern(adjacency, dofs, ncp, s);
+  sys.Ms = scalarMassPattern(adjacency, dofs, ncp);
+  adjacency.clear();
+  const QuadratureSetup setup = quadratureSetup(model, d, s);
+  assembleElements(space, dofs, model, setup, sys);
+  consistentMass(dofs, ncp, s, sys);
+  return sys;
 }
 
 }  // namespace ffriga
