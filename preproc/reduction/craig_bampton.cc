@@ -152,10 +152,10 @@ void solveModesSideBySide(const SparseCholesky& chol, const SparseMatrix& Mii,
   out->timings.emplace_back("constraint modes (CHOLMOD)", seconds[1]);
 }
 
-Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o,
-                        ReducedModel* out) {
-  const int n = static_cast<int>(K.rows());
-  const Partition p = partition(o.interface);
+// Throws InputError unless the split is a well-posed Craig-Bampton problem: a non-empty
+// interface that suppresses every rigid motion (else K_ii is singular), and
+// 0 <= normal_modes < n_i.
+void checkInterface(const Partition& p, const ReductionOptions& o, int n) {
   const int ni = static_cast<int>(p.interior.size());
   const int nb = static_cast<int>(p.boundary.size());
   if (nb == 0) {
@@ -163,7 +163,6 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
         "Craig-Bampton reduction: the interface is empty (no control point of the "
         "contact region has a free degree of freedom); enlarge contact.region");
   }
-  // The interface must suppress every rigid motion, otherwise K_ii is singular.
   const int nr = static_cast<int>(o.rigid_modes.cols());
   Eigen::MatrixXd Rb(nb, nr);
   for (int k = 0; k < nb; ++k) Rb.row(k) = o.rigid_modes.row(p.boundary[k]);
@@ -181,12 +180,11 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
                            << "fixed-interface problem has " << ni << " DOFs (" << n
                            << " in total, " << nb << " on the interface)");
   }
-  StepTimer timer(out);
-  SparseMatrix Kii, Kib, Kbb, Mii;
-  splitBlocks(K, p, &Kii, &Kib, &Kbb);
-  splitBlocks(M, p, &Mii, nullptr, nullptr);
-  timer.step("partition");
-  SparseCholesky chol;
+}
+
+// Factorises K_ii into chol and records its statistics in out; throws ComputeError if K_ii
+// is not positive definite or its factor is non-finite or numerically singular.
+void factorInterior(const SparseMatrix& Kii, SparseCholesky& chol, ReducedModel* out) {
   std::string message;
   const auto status = chol.factorize(Kii, &message);
   if (status == SparseCholesky::Status::kNotPositiveDefinite) {
@@ -215,6 +213,43 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
                              << "): the fixed-interface problem is "
                              << "unconstrained or the stiffness overflowed");
   }
+}
+
+// Psi = [normal modes, constraint modes] on the interior DOFs, the identity on the interface
+// ones, and Kr = Psi^T K Psi = diag(lambda) (+) (K_bb + K_ib^T X): the couplings vanish
+// since K_ii X = -K_ib.
+Basis assembleBasis(const Partition& p, const EigenResult& modes, const Eigen::MatrixXd& X,
+                    const SparseMatrix& Kib, const SparseMatrix& Kbb, int n, int nm) {
+  const int ni = static_cast<int>(p.interior.size());
+  const int nb = static_cast<int>(p.boundary.size());
+  Basis basis;
+  basis.Psi.setZero(n, nm + nb);
+  for (int k = 0; k < ni; ++k) {
+    const int row = p.interior[k];
+    if (nm > 0) basis.Psi.row(row).head(nm) = modes.vectors.row(k);
+    basis.Psi.row(row).tail(nb) = X.row(k);
+  }
+  for (int k = 0; k < nb; ++k) basis.Psi(p.boundary[k], nm + k) = 1.0;
+  basis.Kr.setZero(nm + nb, nm + nb);
+  for (int j = 0; j < nm; ++j) basis.Kr(j, j) = modes.values(j);
+  const SparseMatrix KbbFull = Kbb.selfadjointView<Eigen::Upper>();
+  Eigen::MatrixXd Kc = Eigen::MatrixXd(KbbFull) + Kib.transpose() * X;
+  basis.Kr.bottomRightCorner(nb, nb) = 0.5 * (Kc + Kc.transpose());
+  return basis;
+}
+
+Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o,
+                        ReducedModel* out) {
+  const int n = static_cast<int>(K.rows());
+  const Partition p = partition(o.interface);
+  checkInterface(p, o, n);
+  StepTimer timer(out);
+  SparseMatrix Kii, Kib, Kbb, Mii;
+  splitBlocks(K, p, &Kii, &Kib, &Kbb);
+  splitBlocks(M, p, &Mii, nullptr, nullptr);
+  timer.step("partition");
+  SparseCholesky chol;
+  factorInterior(Kii, chol, out);
   timer.step("factorise K_ii");
   Kii = SparseMatrix();  // the factor has what it needs (0.8 GB for a 160k-DOF body)
   EigenResult modes;
@@ -224,24 +259,8 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
   out->arpack_iterations = modes.iterations;
   out->normal_mode_omega2 = modes.values;
   out->normal_modes = o.normal_modes;
-  out->constraint_modes = nb;
-  Basis basis;
-  const int nm = o.normal_modes;
-  basis.Psi.setZero(n, nm + nb);
-  for (int k = 0; k < ni; ++k) {
-    const int row = p.interior[k];
-    if (nm > 0) basis.Psi.row(row).head(nm) = modes.vectors.row(k);
-    basis.Psi.row(row).tail(nb) = X.row(k);
-  }
-  for (int k = 0; k < nb; ++k) basis.Psi(p.boundary[k], nm + k) = 1.0;
-  // Psi^T K Psi = diag(lambda) (+) (K_bb + K_ib^T X): the couplings vanish since
-  // K_ii X = -K_ib.
-  basis.Kr.setZero(nm + nb, nm + nb);
-  for (int j = 0; j < nm; ++j) basis.Kr(j, j) = modes.values(j);
-  const SparseMatrix KbbFull = Kbb.selfadjointView<Eigen::Upper>();
-  Eigen::MatrixXd Kc = Eigen::MatrixXd(KbbFull) + Kib.transpose() * X;
-  basis.Kr.bottomRightCorner(nb, nb) = 0.5 * (Kc + Kc.transpose());
-  return basis;
+  out->constraint_modes = static_cast<int>(p.boundary.size());
+  return assembleBasis(p, modes, X, Kib, Kbb, n, o.normal_modes);
 }
 
 Basis modalBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o,
