@@ -35,6 +35,63 @@ void geometryAt(const SplineSpace& space, const PatchBasis& R, Eigen::VectorXd& 
   }
 }
 
+// Where the derivatives of point pt are taken: the basis table (in w) and Jacobian J (on
+// entry the point's) at the point, or kInside of the element's span towards its centre if
+// the map is singular at the point (`radius` then becomes x_0 there); false if singular
+// there too.
+bool derivativePoint(const SplineSpace& space, const ParametricPoint& pt, PointWork& w,
+                     Eigen::VectorXd& xd, Eigen::MatrixXd& J, Eigen::MatrixXd& Jc, double& radius) {
+  const int d = space.paramDim();
+  const ElementBox box = space.element(pt.element);
+  double centre[3] = {0, 0, 0};
+  for (int a = 0; a < d; ++a) centre[a] = 0.5 * (box.lower[a] + box.upper[a]);
+  space.elementBasis(pt.element, centre, 1, w.basis);
+  geometryAt(space, w.basis, xd, Jc);
+  const double detCentre = std::abs(Jc.determinant());
+  if (!(std::abs(J.determinant()) >= kSingular * detCentre)) {
+    double xi[3] = {pt.xi[0], pt.xi[1], pt.xi[2]};
+    for (int a = 0; a < d; ++a) xi[a] += kInside * (centre[a] - xi[a]) / 0.5;
+    space.elementBasis(pt.element, xi, 1, w.basis);
+    geometryAt(space, w.basis, xd, J);
+    radius = xd(0);
+    if (!(std::abs(J.determinant()) >= kSingular * detCentre)) return false;
+  } else {
+    space.elementBasis(pt.element, pt.xi.data(), 1, w.basis);
+  }
+  return true;
+}
+
+// The stress modes S = D B Phi_loc of one point (6 x nq; axisymmetric: rows rr, yy, tt, ry,
+// the rest zero) from the basis table in w and the Jacobian J of the same point.
+void stressAt(const Eigen::MatrixXd& J, const Eigen::MatrixXd& Phi, const Eigen::MatrixXd& D,
+              bool axisymmetric, double radius, double size, int s, PointWork& w,
+              Eigen::Block<Eigen::MatrixXd> S) {
+  const int d = static_cast<int>(J.cols());
+  const int nq = static_cast<int>(Phi.cols());
+  const int nb = static_cast<int>(w.basis.index.size());
+  const Eigen::MatrixXd Jinv = J.inverse();  // d = s
+  w.grad.resize(s, nb);
+  for (int c = 0; c < s; ++c)
+    for (int j = 0; j < nb; ++j) {
+      double v = 0.0;
+      for (int a = 0; a < d; ++a) v += Jinv(a, c) * w.basis.table(1 + a, j);
+      w.grad(c, j) = v;
+    }
+  const bool onAxis = axisymmetric && std::abs(radius) <= 1e-12 * size;
+  strainOperator(w.grad, w.basis.table.row(0), axisymmetric, radius, onAxis, w.B);
+  w.PhiLoc.resize(static_cast<Eigen::Index>(nb) * s, nq);
+  for (int j = 0; j < nb; ++j)
+    w.PhiLoc.middleRows(static_cast<Eigen::Index>(j) * s, s) =
+        Phi.middleRows(static_cast<Eigen::Index>(w.basis.index[j]) * s, s);
+  const Eigen::MatrixXd sigma = D * (w.B * w.PhiLoc);  // ns x nq
+  if (!axisymmetric) {
+    S = sigma;
+  } else {
+    const int ns = strainComponents(axisymmetric);
+    for (int r = 0; r < ns; ++r) S.row(r) = sigma.row(r);  // rr, yy, tt, ry; yz = xz = 0
+  }
+}
+
 }  // namespace
 
 SampledModes sampleModes(const SplineSpace& space, const std::vector<ParametricPoint>& points,
@@ -47,7 +104,6 @@ SampledModes sampleModes(const SplineSpace& space, const std::vector<ParametricP
                "Phi has " << Phi.rows() << " rows for " << space.numFunctions()
                           << " control points");
   const Eigen::MatrixXd D = constitutiveMatrix(material, axisymmetric);
-  const int ns = strainComponents(axisymmetric);
   SampledModes out;
   out.points.resize(np, s);
   out.parameters.resize(np, d);
@@ -73,49 +129,14 @@ SampledModes sampleModes(const SplineSpace& space, const std::vector<ParametricP
         out.Phi.middleRows(static_cast<Eigen::Index>(i) * s, s) +=
             w.basis.table(0, j) * Phi.middleRows(static_cast<Eigen::Index>(k) * s, s);
       }
-      // Derivatives: inside the element where the map is singular at the point.
-      const ElementBox box = space.element(pt.element);
-      double centre[3] = {0, 0, 0};
-      for (int a = 0; a < d; ++a) centre[a] = 0.5 * (box.lower[a] + box.upper[a]);
-      space.elementBasis(pt.element, centre, 1, w.basis);
-      geometryAt(space, w.basis, xd, Jc);
-      const double detCentre = std::abs(Jc.determinant());
       double radius = x(0);  // of the point where the derivatives are taken
-      if (!(std::abs(J.determinant()) >= kSingular * detCentre)) {
-        double xi[3] = {pt.xi[0], pt.xi[1], pt.xi[2]};
-        for (int a = 0; a < d; ++a) xi[a] += kInside * (centre[a] - xi[a]) / 0.5;
-        space.elementBasis(pt.element, xi, 1, w.basis);
-        geometryAt(space, w.basis, xd, J);
-        radius = xd(0);
-        if (!(std::abs(J.determinant()) >= kSingular * detCentre)) {
+      if (!derivativePoint(space, pt, w, xd, J, Jc, radius)) {
 #pragma omp atomic write
-          singular = true;
-          continue;
-        }
-      } else {
-        space.elementBasis(pt.element, pt.xi.data(), 1, w.basis);
+        singular = true;
+        continue;
       }
-      const Eigen::MatrixXd Jinv = J.inverse();  // d = s
-      w.grad.resize(s, nb);
-      for (int c = 0; c < s; ++c)
-        for (int j = 0; j < nb; ++j) {
-          double v = 0.0;
-          for (int a = 0; a < d; ++a) v += Jinv(a, c) * w.basis.table(1 + a, j);
-          w.grad(c, j) = v;
-        }
-      const bool onAxis = axisymmetric && std::abs(radius) <= 1e-12 * size;
-      strainOperator(w.grad, w.basis.table.row(0), axisymmetric, radius, onAxis, w.B);
-      w.PhiLoc.resize(static_cast<Eigen::Index>(nb) * s, nq);
-      for (int j = 0; j < nb; ++j)
-        w.PhiLoc.middleRows(static_cast<Eigen::Index>(j) * s, s) =
-            Phi.middleRows(static_cast<Eigen::Index>(w.basis.index[j]) * s, s);
-      const Eigen::MatrixXd sigma = D * (w.B * w.PhiLoc);  // ns x nq
-      Eigen::Block<Eigen::MatrixXd> S = out.stress.middleRows(static_cast<Eigen::Index>(i) * 6, 6);
-      if (!axisymmetric) {
-        S = sigma;
-      } else {
-        for (int r = 0; r < ns; ++r) S.row(r) = sigma.row(r);  // rr, yy, tt, ry; yz = xz = 0
-      }
+      stressAt(J, Phi, D, axisymmetric, radius, size, s, w,
+               out.stress.middleRows(static_cast<Eigen::Index>(i) * 6, 6));
     }
   }
   if (singular) {
