@@ -96,24 +96,31 @@ Eigen::MatrixXd markerRotationModes(const SplineSpace& space, const std::string&
   return Psi;
 }
 
-Marker evaluateFaceMarker(const SplineSpace& space, const std::string& name, int direction,
-                          bool upper, int gauss_points, const Eigen::MatrixXd& Phi) {
-  FFRIGA_CHECK(space.spaceDim() == 3 && space.paramDim() == 3, "face markers need a 3D body");
+namespace {
+
+// A quadrature point of a face: weight dA, position, basis values.
+struct FacePoint {
+  double dA;
+  Eigen::Vector3d x;
+  std::vector<int> index;
+  Eigen::VectorXd R;
+};
+
+// The parameter of the face xi_direction = front (lower) or back (upper) of the domain.
+double faceParameter(const SplineSpace& space, int direction, bool upper) {
   double lo = 1e300, hi = -1e300;
   for (int e = 0; e < space.numElements(); ++e) {
     lo = std::min(lo, space.element(e).lower[direction]);
     hi = std::max(hi, space.element(e).upper[direction]);
   }
-  const double face = upper ? hi : lo;
+  return upper ? hi : lo;
+}
+
+// The Gauss points of the face elements (gauss_points per direction), element by element.
+std::vector<FacePoint> faceQuadrature(const SplineSpace& space, int direction, bool upper,
+                                      double face, int gauss_points) {
   const int a0 = (direction + 1) % 3, a1 = (direction + 2) % 3;
   const Eigen::MatrixXd& P = space.controlPoints();
-  // Quadrature points of the face: weight dA, position, basis values.
-  struct FacePoint {
-    double dA;
-    Eigen::Vector3d x;
-    std::vector<int> index;
-    Eigen::VectorXd R;
-  };
   std::vector<FacePoint> points;
   PatchBasis basis;
   for (int e = 0; e < space.numElements(); ++e) {
@@ -144,15 +151,15 @@ Marker evaluateFaceMarker(const SplineSpace& space, const std::string& name, int
         points.push_back(std::move(fp));
       }
   }
-  double A = 0.0;
-  Eigen::Vector3d xc = Eigen::Vector3d::Zero();
-  for (const FacePoint& fp : points) A += fp.dA, xc += fp.dA * fp.x;
-  if (!(A > 0.0))
-    throw InputError(Str() << "marker '" << name << "': the face has no area (a collapsed face)");
-  xc /= A;
+  return points;
+}
+
+// About the centroid xc of the face (area A): its area moment of inertia I_A, and per
+// function w_k = int R_k dA / A and the moment int R_k r~ dA.
+Eigen::Matrix3d faceMoments(const std::vector<FacePoint>& points, const Eigen::Vector3d& xc,
+                            double A, std::map<int, double>& w,
+                            std::map<int, Eigen::Matrix3d>& moment) {
   Eigen::Matrix3d IA = Eigen::Matrix3d::Zero();
-  std::map<int, double> w;                // int R_k dA / A
-  std::map<int, Eigen::Matrix3d> moment;  // int R_k r~ dA
   for (const FacePoint& fp : points) {
     const Eigen::Vector3d r = fp.x - xc;
     IA += fp.dA * (r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose());
@@ -166,6 +173,25 @@ Marker evaluateFaceMarker(const SplineSpace& space, const std::string& name, int
       it->second += Rk * fp.dA * rs;
     }
   }
+  return IA;
+}
+
+}  // namespace
+
+Marker evaluateFaceMarker(const SplineSpace& space, const std::string& name, int direction,
+                          bool upper, int gauss_points, const Eigen::MatrixXd& Phi) {
+  FFRIGA_CHECK(space.spaceDim() == 3 && space.paramDim() == 3, "face markers need a 3D body");
+  const double face = faceParameter(space, direction, upper);
+  const std::vector<FacePoint> points = faceQuadrature(space, direction, upper, face, gauss_points);
+  double A = 0.0;
+  Eigen::Vector3d xc = Eigen::Vector3d::Zero();
+  for (const FacePoint& fp : points) A += fp.dA, xc += fp.dA * fp.x;
+  if (!(A > 0.0))
+    throw InputError(Str() << "marker '" << name << "': the face has no area (a collapsed face)");
+  xc /= A;
+  std::map<int, double> w;                // int R_k dA / A
+  std::map<int, Eigen::Matrix3d> moment;  // int R_k r~ dA
+  const Eigen::Matrix3d IA = faceMoments(points, xc, A, w, moment);
   const Eigen::LDLT<Eigen::Matrix3d> IAinv(IA);
   Marker m;
   m.name = name;
