@@ -98,6 +98,102 @@ std::vector<double> startVector(int n) {
   return v;
 }
 
+// ARPACK's state for dsaupd/dseupd (mode 3, bmat = 'G', which = 'LM'): sizes and work arrays.
+struct ArpackState {
+  ArpackState(int size, const EigenOptions& o)
+      : n(size),
+        nev(o.count),
+        ncv(std::min(n, std::max(2 * nev + 1, nev + 20))),
+        lworkl(ncv * (ncv + 8)),
+        resid(startVector(n)),
+        v(static_cast<std::size_t>(n) * ncv),
+        workd(3 * n),
+        workl(lworkl) {
+    iparam[0] = 1;  // exact shifts
+    iparam[2] = o.max_iterations;
+    iparam[6] = 3;  // shift-invert
+  }
+  const int n, nev, ncv, lworkl;
+  std::vector<double> resid, v, workd, workl;
+  int iparam[11] = {0}, ipntr[11] = {0};
+  int ido = 0, info = 1;  // 1: start from resid
+  const char bmat = 'G';
+  const char which[3] = "LM";
+};
+
+// The Lanczos iterations (dsaupd's reverse communication): applies OP = (K - sigma M)^{-1} M
+// and B = M until ARPACK has converged. Throws ComputeError if dsaupd fails.
+void lanczosIterations(const SparseCholesky& chol, const SparseMatrix& M, const EigenOptions& o,
+                       ArpackState& st, EigenResult& result) {
+  const int n = st.n;
+  std::vector<double> tmp(n);
+  while (true) {
+    dsaupd_(&st.ido, &st.bmat, &n, st.which, &st.nev, &o.tolerance, st.resid.data(), &st.ncv,
+            st.v.data(), &n, st.iparam, st.ipntr, st.workd.data(), st.workl.data(), &st.lworkl,
+            &st.info, 1, 2);
+    double* x = st.workd.data() + st.ipntr[0] - 1;
+    double* y = st.workd.data() + st.ipntr[1] - 1;
+    if (st.ido == -1 || st.ido == 1) {
+      // y = (K - sigma M)^{-1} M x; for ido = 1, M x is already at ipntr[2].
+      Eigen::Map<Eigen::VectorXd> tv(tmp.data(), n);
+      if (st.ido == 1) {
+        tv = Eigen::Map<const Eigen::VectorXd>(st.workd.data() + st.ipntr[2] - 1, n);
+      } else {
+        tv = M.selfadjointView<Eigen::Upper>() * Eigen::Map<const Eigen::VectorXd>(x, n);
+      }
+      chol.solve(tmp.data(), y);
+      ++result.operator_applications;
+    } else if (st.ido == 2) {
+      Eigen::Map<Eigen::VectorXd>(y, n) =
+          M.selfadjointView<Eigen::Upper>() * Eigen::Map<const Eigen::VectorXd>(x, n);
+    } else {
+      break;
+    }
+  }
+  if (st.info != 0) {
+    throw ComputeError(Str() << o.what << ": ARPACK dsaupd failed (info = " << st.info << "): "
+                             << dsaupdMessage(st.info) << "; " << st.iparam[4] << " of " << st.nev
+                             << " eigenvalues converged after " << st.iparam[2] << " iterations");
+  }
+}
+
+// The Ritz pairs (dseupd): eigenvalues d and eigenvectors Z (n x nev), in ARPACK's order.
+// Throws ComputeError if dseupd fails or fewer than nev eigenvalues converged.
+void ritzPairs(const EigenOptions& o, ArpackState& st, std::vector<double>& d, Eigen::MatrixXd& Z) {
+  const int n = st.n;
+  const int rvec = 1;
+  const char howmny = 'A';
+  std::vector<int> select(st.ncv, 0);
+  dseupd_(&rvec, &howmny, select.data(), d.data(), Z.data(), &n, &o.shift, &st.bmat, &n, st.which,
+          &st.nev, &o.tolerance, st.resid.data(), &st.ncv, st.v.data(), &n, st.iparam, st.ipntr,
+          st.workd.data(), st.workl.data(), &st.lworkl, &st.info, 1, 1, 2);
+  if (st.info != 0) {
+    throw ComputeError(Str() << o.what << ": ARPACK dseupd failed (info = " << st.info
+                             << "): " << dseupdMessage(st.info));
+  }
+  if (st.iparam[4] < st.nev) {
+    throw ComputeError(Str() << o.what << ": only " << st.iparam[4] << " of " << st.nev
+                             << " eigenvalues converged");
+  }
+}
+
+// The eigenpairs in ascending order of the eigenvalues, vectors normalised to phi^T M phi = 1.
+void sortedNormalisedPairs(const std::vector<double>& d, const Eigen::MatrixXd& Z,
+                           const SparseMatrix& M, EigenResult& result) {
+  const int nev = static_cast<int>(d.size());
+  std::vector<int> order(nev);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return d[a] < d[b]; });
+  result.values.resize(nev);
+  result.vectors.resize(Z.rows(), nev);
+  for (int j = 0; j < nev; ++j) {
+    result.values(j) = d[order[j]];
+    Eigen::VectorXd phi = Z.col(order[j]);
+    const double m = phi.dot(M.selfadjointView<Eigen::Upper>() * phi);
+    result.vectors.col(j) = phi / std::sqrt(m);
+  }
+}
+
 }  // namespace
 
 EigenResult solveEigenproblem(const SparseMatrix& K, const SparseMatrix& M, const EigenOptions& o) {
@@ -128,76 +224,15 @@ EigenResult solveEigenproblem(const SparseCholesky& chol, const SparseMatrix& M,
                            << ")");
   }
 
-  const int nev = o.count;
-  const int ncv = std::min(n, std::max(2 * nev + 1, nev + 20));
-  const int lworkl = ncv * (ncv + 8);
-  std::vector<double> resid = startVector(n), v(static_cast<std::size_t>(n) * ncv), workd(3 * n),
-      workl(lworkl);
-  int iparam[11] = {0}, ipntr[11] = {0};
-  iparam[0] = 1;  // exact shifts
-  iparam[2] = o.max_iterations;
-  iparam[6] = 3;  // shift-invert
-  int ido = 0, info = 1;  // 1: start from resid
-  const char bmat = 'G';
-  const char which[] = "LM";
+  ArpackState st(n, o);
   EigenResult result;
-  std::vector<double> tmp(n);
   const SingleThreadedBlas singleThreaded;  // the operator is applied one vector at a time
-  while (true) {
-    dsaupd_(&ido, &bmat, &n, which, &nev, &o.tolerance, resid.data(), &ncv, v.data(), &n, iparam,
-            ipntr, workd.data(), workl.data(), &lworkl, &info, 1, 2);
-    double* x = workd.data() + ipntr[0] - 1;
-    double* y = workd.data() + ipntr[1] - 1;
-    if (ido == -1 || ido == 1) {
-      // y = (K - sigma M)^{-1} M x; for ido = 1, M x is already at ipntr[2].
-      Eigen::Map<Eigen::VectorXd> tv(tmp.data(), n);
-      if (ido == 1) {
-        tv = Eigen::Map<const Eigen::VectorXd>(workd.data() + ipntr[2] - 1, n);
-      } else {
-        tv = M.selfadjointView<Eigen::Upper>() * Eigen::Map<const Eigen::VectorXd>(x, n);
-      }
-      chol.solve(tmp.data(), y);
-      ++result.operator_applications;
-    } else if (ido == 2) {
-      Eigen::Map<Eigen::VectorXd>(y, n) =
-          M.selfadjointView<Eigen::Upper>() * Eigen::Map<const Eigen::VectorXd>(x, n);
-    } else {
-      break;
-    }
-  }
-  if (info != 0) {
-    throw ComputeError(Str() << o.what << ": ARPACK dsaupd failed (info = " << info
-                             << "): " << dsaupdMessage(info) << "; " << iparam[4] << " of " << nev
-                             << " eigenvalues converged after " << iparam[2] << " iterations");
-  }
-  result.iterations = iparam[2];
-  const int rvec = 1;
-  const char howmny = 'A';
-  std::vector<int> select(ncv, 0);
-  std::vector<double> d(nev);
-  Eigen::MatrixXd Z(n, nev);
-  dseupd_(&rvec, &howmny, select.data(), d.data(), Z.data(), &n, &o.shift, &bmat, &n, which, &nev,
-          &o.tolerance, resid.data(), &ncv, v.data(), &n, iparam, ipntr, workd.data(), workl.data(),
-          &lworkl, &info, 1, 1, 2);
-  if (info != 0) {
-    throw ComputeError(Str() << o.what << ": ARPACK dseupd failed (info = " << info
-                             << "): " << dseupdMessage(info));
-  }
-  if (iparam[4] < nev) {
-    throw ComputeError(Str() << o.what << ": only " << iparam[4] << " of " << nev
-                             << " eigenvalues converged");
-  }
-  std::vector<int> order(nev);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return d[a] < d[b]; });
-  result.values.resize(nev);
-  result.vectors.resize(n, nev);
-  for (int j = 0; j < nev; ++j) {
-    result.values(j) = d[order[j]];
-    Eigen::VectorXd phi = Z.col(order[j]);
-    const double m = phi.dot(M.selfadjointView<Eigen::Upper>() * phi);
-    result.vectors.col(j) = phi / std::sqrt(m);
-  }
+  lanczosIterations(chol, M, o, st, result);
+  result.iterations = st.iparam[2];
+  std::vector<double> d(st.nev);
+  Eigen::MatrixXd Z(n, st.nev);
+  ritzPairs(o, st, d, Z);
+  sortedNormalisedPairs(d, Z, M, result);
   return result;
 }
 
