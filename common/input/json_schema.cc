@@ -126,6 +126,104 @@ bool sameValue(const YAML::Node& a, const YAML::Node& b) {
   return true;
 }
 
+// A boolean schema: `true` accepts anything, `false` nothing.
+void checkBooleanSchema(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                        const YAML::Node& where, const std::string& key) {
+  bool accept = true;
+  if (schema.IsScalar() && YAML::convert<bool>::decode(schema, accept) && !accept) {
+    throw inputError(doc, where, key,
+                     Str() << "no value allowed here, found " << describeNode(node));
+  }
+}
+
+void checkType(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+               const YAML::Node& where, const std::string& key) {
+  const YAML::Node t = schema["type"];
+  if (!t) return;
+  std::vector<std::string> types;
+  if (t.IsSequence()) {
+    for (const auto& x : t) types.push_back(x.Scalar());
+  } else {
+    types.push_back(t.Scalar());
+  }
+  bool ok = false;
+  for (const auto& ty : types) ok = ok || hasType(node, ty);
+  if (ok) return;
+  Str expected;
+  for (std::size_t i = 0; i < types.size(); ++i) {
+    expected << (i ? " or " : "") << article(types[i]);
+  }
+  throw inputError(doc, where, key,
+                   Str() << "expected " << expected.str() << ", found " << describeNode(node));
+}
+
+void checkConstAndEnum(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                       const YAML::Node& where, const std::string& key) {
+  if (const YAML::Node c = schema["const"]) {
+    if (!sameValue(c, node)) {
+      throw inputError(doc, where, key,
+                       Str() << "expected " << c.Scalar() << ", found " << describeNode(node));
+    }
+  }
+  if (const YAML::Node e = schema["enum"]) {
+    bool ok = false;
+    Str allowed;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      ok = ok || sameValue(e[i], node);
+      allowed << (i ? ", " : "") << e[i].Scalar();
+    }
+    if (!ok) {
+      throw inputError(
+          doc, where, key,
+          Str() << "expected one of " << allowed.str() << "; found " << describeNode(node));
+    }
+  }
+}
+
+// minimum, maximum, exclusiveMinimum, exclusiveMaximum of a number, with its x-unit.
+void checkBounds(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                 const YAML::Node& where, const std::string& key) {
+  double value;
+  if (!isNumber(node, &value)) return;
+  const std::string unit = schema["x-unit"] ? " " + schema["x-unit"].Scalar() : "";
+  auto bound = [&](const char* kw, bool violated, const char* rule) {
+    if (schema[kw] && violated) {
+      throw inputError(doc, where, key,
+                       Str() << "expected a number " << rule << " " << schema[kw].Scalar() << unit
+                             << ", found " << node.Scalar());
+    }
+  };
+  bound("minimum", schema["minimum"] && value < schema["minimum"].as<double>(), ">=");
+  bound("maximum", schema["maximum"] && value > schema["maximum"].as<double>(), "<=");
+  bound("exclusiveMinimum",
+        schema["exclusiveMinimum"] && value <= schema["exclusiveMinimum"].as<double>(), ">");
+  bound("exclusiveMaximum",
+        schema["exclusiveMaximum"] && value >= schema["exclusiveMaximum"].as<double>(), "<");
+}
+
+// "unknown key (did you mean 'NAME'?); expected one of: ..." for key `k` of a mapping whose
+// schema lists `props` (may be undefined) and admits no other key.
+std::string unknownKeyMessage(const YAML::Node& props, const std::string& k) {
+  Str allowed;
+  std::string closest;
+  std::size_t best = 3;  // suggest only names at most 2 edits away
+  bool first = true;
+  if (props) {
+    for (const auto& p : props) {
+      const std::string name = p.first.Scalar();
+      allowed << (first ? "" : ", ") << name;
+      first = false;
+      const std::size_t dist = editDistance(k, name);
+      if (dist < best) best = dist, closest = name;
+    }
+  }
+  Str msg;
+  msg << "unknown key";
+  if (!closest.empty()) msg << " (did you mean '" << closest << "'?)";
+  msg << "; expected one of: " << allowed.str();
+  return msg;
+}
+
 }  // namespace
 
 JsonSchema::JsonSchema(const std::string& text, const std::string& name) : name_(name) {
@@ -182,200 +280,179 @@ void JsonSchema::validate(const YamlDocument& doc) const {
   check(doc, root_, doc.root, doc.root, "");
 }
 
+// The phases in the order their errors take precedence: type, const and enum, numeric
+// bounds, list items, mapping keys (unknown, required, each property), then oneOf.
 void JsonSchema::check(const YamlDocument& doc, const YAML::Node& schemaIn, const YAML::Node& node,
                        const YAML::Node& parent, const std::string& key) const {
   const YAML::Node schema = resolve(schemaIn);
   const YAML::Node& where = node.IsDefined() ? node : parent;
-  if (!schema.IsMap()) {  // boolean schema: `true` accepts anything, `false` nothing
-    bool accept = true;
-    if (schema.IsScalar() && YAML::convert<bool>::decode(schema, accept) && !accept) {
-      throw inputError(doc, where, key,
-                       Str() << "no value allowed here, found " << describeNode(node));
-    }
+  if (!schema.IsMap()) {
+    checkBooleanSchema(doc, schema, node, where, key);
     return;
   }
-
-  if (const YAML::Node t = schema["type"]) {
-    std::vector<std::string> types;
-    if (t.IsSequence()) {
-      for (const auto& x : t) types.push_back(x.Scalar());
-    } else {
-      types.push_back(t.Scalar());
-    }
-    bool ok = false;
-    for (const auto& ty : types) ok = ok || hasType(node, ty);
-    if (!ok) {
-      Str expected;
-      for (std::size_t i = 0; i < types.size(); ++i) {
-        expected << (i ? " or " : "") << article(types[i]);
-      }
-      throw inputError(doc, where, key,
-                       Str() << "expected " << expected.str() << ", found " << describeNode(node));
-    }
-  }
-
-  if (const YAML::Node c = schema["const"]) {
-    if (!sameValue(c, node)) {
-      throw inputError(doc, where, key,
-                       Str() << "expected " << c.Scalar() << ", found " << describeNode(node));
-    }
-  }
-  if (const YAML::Node e = schema["enum"]) {
-    bool ok = false;
-    Str allowed;
-    for (std::size_t i = 0; i < e.size(); ++i) {
-      ok = ok || sameValue(e[i], node);
-      allowed << (i ? ", " : "") << e[i].Scalar();
-    }
-    if (!ok) {
-      throw inputError(
-          doc, where, key,
-          Str() << "expected one of " << allowed.str() << "; found " << describeNode(node));
-    }
-  }
-
-  double value;
-  if (isNumber(node, &value)) {
-    const std::string unit = schema["x-unit"] ? " " + schema["x-unit"].Scalar() : "";
-    auto bound = [&](const char* kw, bool violated, const char* rule) {
-      if (schema[kw] && violated) {
-        throw inputError(doc, where, key,
-                         Str() << "expected a number " << rule << " " << schema[kw].Scalar() << unit
-                               << ", found " << node.Scalar());
-      }
-    };
-    bound("minimum", schema["minimum"] && value < schema["minimum"].as<double>(), ">=");
-    bound("maximum", schema["maximum"] && value > schema["maximum"].as<double>(), "<=");
-    bound("exclusiveMinimum",
-          schema["exclusiveMinimum"] && value <= schema["exclusiveMinimum"].as<double>(), ">");
-    bound("exclusiveMaximum",
-          schema["exclusiveMaximum"] && value >= schema["exclusiveMaximum"].as<double>(), "<");
-  }
-
-  if (node.IsSequence()) {
-    const int n = static_cast<int>(node.size());
-    auto count = [](int k) -> std::string { return Str() << k << (k == 1 ? " item" : " items"); };
-    if (schema["minItems"] && n < schema["minItems"].as<int>()) {
-      throw inputError(doc, where, key,
-                       Str() << "expected at least " << count(schema["minItems"].as<int>())
-                             << ", found " << n);
-    }
-    if (schema["maxItems"] && n > schema["maxItems"].as<int>()) {
-      throw inputError(doc, where, key,
-                       Str() << "expected at most " << count(schema["maxItems"].as<int>())
-                             << ", found " << n);
-    }
-    if (const YAML::Node items = schema["items"]) {
-      for (int i = 0; i < n; ++i) {
-        check(doc, items, node[i], node, Str() << key << "[" << i << "]");
-      }
-    }
-  }
-
+  checkType(doc, schema, node, where, key);
+  checkConstAndEnum(doc, schema, node, where, key);
+  checkBounds(doc, schema, node, where, key);
+  if (node.IsSequence()) checkArray(doc, schema, node, where, key);
   if (node.IsMap()) {
-    const YAML::Node props = schema["properties"];
-    const YAML::Node additional = schema["additionalProperties"];
-    // Unknown keys first: a misspelt key also explains a "missing" required one.
-    for (const auto& kv : node) {
-      const std::string k = kv.first.Scalar();
-      const std::string childKey = join(key, k);
-      if (props && props[k]) continue;
-      if (additional && additional.IsScalar() && !additional.as<bool>()) {
-        Str allowed;
-        std::string closest;
-        std::size_t best = 3;  // suggest only names at most 2 edits away
-        bool first = true;
-        if (props) {
-          for (const auto& p : props) {
-            const std::string name = p.first.Scalar();
-            allowed << (first ? "" : ", ") << name;
-            first = false;
-            const std::size_t dist = editDistance(k, name);
-            if (dist < best) best = dist, closest = name;
-          }
-        }
-        Str msg;
-        msg << "unknown key";
-        if (!closest.empty()) msg << " (did you mean '" << closest << "'?)";
-        msg << "; expected one of: " << allowed.str();
-        throw inputError(doc, kv.first, childKey, msg);
-      } else if (additional && additional.IsMap()) {
-        check(doc, additional, kv.second, kv.first, childKey);
-      }
-    }
-    if (const YAML::Node req = schema["required"]) {
-      for (const auto& r : req) {
-        if (!node[r.Scalar()]) {
-          Str msg;
-          msg << "missing required key '" << r.Scalar() << "'";
-          const YAML::Node ps = props ? resolve(props[r.Scalar()]) : YAML::Node();
-          if (ps && ps.IsMap() && ps["description"])
-            msg << " (" << ps["description"].Scalar() << ")";
-          throw inputError(doc, where, key.empty() ? "(top level)" : key, msg);
-        }
-      }
-    }
-    for (const auto& kv : node) {
-      const std::string k = kv.first.Scalar();
-      if (props && props[k]) check(doc, props[k], kv.second, kv.first, join(key, k));
-    }
+    checkUnknownKeys(doc, schema, node, key);
+    checkRequired(doc, schema, node, where, key);
+    checkProperties(doc, schema, node, key);
   }
+  if (const YAML::Node one = schema["oneOf"]) checkOneOf(doc, one, node, parent, key);
+}
 
-  if (const YAML::Node one = schema["oneOf"]) {
-    // Discriminated union: each branch fixes one property with const.
-    std::string discriminator;
-    for (const auto& branch : one) {
-      const YAML::Node b = resolve(branch);
-      if (!b.IsMap() || !b["properties"]) continue;
-      for (const auto& p : b["properties"]) {
-        const YAML::Node ps = resolve(p.second);
-        if (ps.IsMap() && ps["const"]) discriminator = p.first.Scalar();
-      }
-    }
-    if (!discriminator.empty() && node.IsMap()) {
-      const YAML::Node tag = node[discriminator];
-      Str allowed;
-      for (std::size_t i = 0; i < one.size(); ++i) {
-        const YAML::Node b = resolve(one[i]);
-        const YAML::Node c = resolve(b["properties"][discriminator])["const"];
-        allowed << (i ? ", " : "") << c.Scalar();
-        if (tag && sameValue(c, tag)) {
-          check(doc, b, node, parent, key);
-          return;
-        }
-      }
-      throw inputError(
-          doc, tag ? tag : where, join(key, discriminator),
-          Str() << "expected one of " << allowed.str() << "; found " << describeNode(tag));
-    }
-    // Otherwise exactly one branch must accept the node; if none does, the error of the
-    // first branch whose type is the node's kind (a mapping against the object branch), so
-    // that the message names the offending inner key rather than "expected a boolean".
-    std::string firstError, kindError;
-    int accepted = -1;
-    for (int i = 0; i < static_cast<int>(one.size()); ++i) {
-      try {
-        check(doc, one[i], node, parent, key);
-      } catch (const InputError& e) {
-        if (firstError.empty()) firstError = e.what();
-        const YAML::Node b = resolve(one[i]);
-        const YAML::Node type = b.IsMap() ? b["type"] : YAML::Node();
-        const bool sameKind = type && type.IsScalar() &&
-                              ((type.Scalar() == "object") == node.IsMap()) &&
-                              ((type.Scalar() == "array") == node.IsSequence());
-        if (sameKind && kindError.empty()) kindError = e.what();
-        continue;
-      }
-      if (accepted >= 0) {
-        throw inputError(doc, where, key,
-                         Str() << "matches alternatives " << accepted + 1 << " and " << i + 1
-                               << " of a oneOf, expected exactly one; found "
-                               << describeNode(node));
-      }
-      accepted = i;
-    }
-    if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
+void JsonSchema::checkArray(const YamlDocument& doc, const YAML::Node& schema,
+                            const YAML::Node& node, const YAML::Node& where,
+                            const std::string& key) const {
+  const int n = static_cast<int>(node.size());
+  auto count = [](int k) -> std::string { return Str() << k << (k == 1 ? " item" : " items"); };
+  if (schema["minItems"] && n < schema["minItems"].as<int>()) {
+    throw inputError(
+        doc, where, key,
+        Str() << "expected at least " << count(schema["minItems"].as<int>()) << ", found " << n);
   }
+  if (schema["maxItems"] && n > schema["maxItems"].as<int>()) {
+    throw inputError(
+        doc, where, key,
+        Str() << "expected at most " << count(schema["maxItems"].as<int>()) << ", found " << n);
+  }
+  if (const YAML::Node items = schema["items"]) {
+    for (int i = 0; i < n; ++i) {
+      check(doc, items, node[i], node, Str() << key << "[" << i << "]");
+    }
+  }
+}
+
+// Unknown keys first: a misspelt key also explains a "missing" required one.
+void JsonSchema::checkUnknownKeys(const YamlDocument& doc, const YAML::Node& schema,
+                                  const YAML::Node& node, const std::string& key) const {
+  const YAML::Node props = schema["properties"];
+  const YAML::Node additional = schema["additionalProperties"];
+  for (const auto& kv : node) {
+    const std::string k = kv.first.Scalar();
+    if (props && props[k]) continue;
+    if (additional && additional.IsScalar() && !additional.as<bool>()) {
+      throw inputError(doc, kv.first, join(key, k), unknownKeyMessage(props, k));
+    } else if (additional && additional.IsMap()) {
+      check(doc, additional, kv.second, kv.first, join(key, k));
+    }
+  }
+}
+
+void JsonSchema::checkRequired(const YamlDocument& doc, const YAML::Node& schema,
+                               const YAML::Node& node, const YAML::Node& where,
+                               const std::string& key) const {
+  const YAML::Node req = schema["required"];
+  if (!req) return;
+  const YAML::Node props = schema["properties"];
+  for (const auto& r : req) {
+    if (node[r.Scalar()]) continue;
+    Str msg;
+    msg << "missing required key '" << r.Scalar() << "'";
+    const YAML::Node ps = props ? resolve(props[r.Scalar()]) : YAML::Node();
+    if (ps && ps.IsMap() && ps["description"]) msg << " (" << ps["description"].Scalar() << ")";
+    throw inputError(doc, where, key.empty() ? "(top level)" : key, msg);
+  }
+}
+
+void JsonSchema::checkProperties(const YamlDocument& doc, const YAML::Node& schema,
+                                 const YAML::Node& node, const std::string& key) const {
+  const YAML::Node props = schema["properties"];
+  if (!props) return;
+  for (const auto& kv : node) {
+    const std::string k = kv.first.Scalar();
+    if (props[k]) check(doc, props[k], kv.second, kv.first, join(key, k));
+  }
+}
+
+// The property every branch of a oneOf fixes with `const` (a discriminator such as
+// geometry.type), or "" when the branches fix none.
+std::string JsonSchema::discriminatorOf(const YAML::Node& one) const {
+  std::string name;
+  for (const auto& branch : one) {
+    const YAML::Node b = resolve(branch);
+    if (!b.IsMap() || !b["properties"]) continue;
+    for (const auto& p : b["properties"]) {
+      const YAML::Node ps = resolve(p.second);
+      if (ps.IsMap() && ps["const"]) name = p.first.Scalar();
+    }
+  }
+  return name;
+}
+
+// The (resolved) branch of a discriminated oneOf whose `const` equals `tag`, or an undefined
+// node.
+YAML::Node JsonSchema::branchFor(const YAML::Node& one, const std::string& discriminator,
+                                 const YAML::Node& tag) const {
+  const YAML::Node none(YAML::NodeType::Undefined);  // YAML::Node() would be a defined null
+  if (!tag) return none;
+  for (const auto& branch : one) {
+    const YAML::Node b = resolve(branch);
+    if (sameValue(resolve(b["properties"][discriminator])["const"], tag)) return b;
+  }
+  return none;
+}
+
+// The values a discriminated oneOf allows, comma-separated.
+std::string JsonSchema::branchValues(const YAML::Node& one,
+                                     const std::string& discriminator) const {
+  Str allowed;
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    const YAML::Node b = resolve(one[i]);
+    allowed << (i ? ", " : "") << resolve(b["properties"][discriminator])["const"].Scalar();
+  }
+  return allowed;
+}
+
+void JsonSchema::checkOneOf(const YamlDocument& doc, const YAML::Node& one, const YAML::Node& node,
+                            const YAML::Node& parent, const std::string& key) const {
+  // Discriminated union: each branch fixes one property with const.
+  const std::string d = discriminatorOf(one);
+  if (d.empty() || !node.IsMap()) {
+    checkExactlyOne(doc, one, node, parent, key);
+    return;
+  }
+  const YAML::Node tag = node[d];
+  if (const YAML::Node b = branchFor(one, d, tag)) {
+    check(doc, b, node, parent, key);
+    return;
+  }
+  throw inputError(
+      doc, tag ? tag : node, join(key, d),
+      Str() << "expected one of " << branchValues(one, d) << "; found " << describeNode(tag));
+}
+
+// Exactly one branch must accept the node; if none does, the error of the first branch whose
+// type is the node's kind (a mapping against the object branch), so that the message names
+// the offending inner key rather than "expected a boolean".
+void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
+                                 const YAML::Node& node, const YAML::Node& parent,
+                                 const std::string& key) const {
+  std::string firstError, kindError;
+  int accepted = -1;
+  for (int i = 0; i < static_cast<int>(one.size()); ++i) {
+    try {
+      check(doc, one[i], node, parent, key);
+    } catch (const InputError& e) {
+      if (firstError.empty()) firstError = e.what();
+      const YAML::Node b = resolve(one[i]);
+      const YAML::Node type = b.IsMap() ? b["type"] : YAML::Node();
+      const bool sameKind = type && type.IsScalar() &&
+                            ((type.Scalar() == "object") == node.IsMap()) &&
+                            ((type.Scalar() == "array") == node.IsSequence());
+      if (sameKind && kindError.empty()) kindError = e.what();
+      continue;
+    }
+    if (accepted >= 0) {
+      const YAML::Node& where = node.IsDefined() ? node : parent;
+      throw inputError(doc, where, key,
+                       Str() << "matches alternatives " << accepted + 1 << " and " << i + 1
+                             << " of a oneOf, expected exactly one; found " << describeNode(node));
+    }
+    accepted = i;
+  }
+  if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
 }
 
 }  // namespace ffriga

@@ -49,8 +49,27 @@ class JsonSchema {
   const std::string& name() const { return name_; }
 
  private:
+  // check() runs the phases below in turn on `node` (the value at `key`; `parent` carries
+  // the line when the node is absent).
   void check(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
              const YAML::Node& parent, const std::string& key) const;
+  void checkArray(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                  const YAML::Node& where, const std::string& key) const;
+  void checkUnknownKeys(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                        const std::string& key) const;
+  void checkRequired(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                     const YAML::Node& where, const std::string& key) const;
+  void checkProperties(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                       const std::string& key) const;
+  void checkOneOf(const YamlDocument& doc, const YAML::Node& one, const YAML::Node& node,
+                  const YAML::Node& parent, const std::string& key) const;
+  void checkExactlyOne(const YamlDocument& doc, const YAML::Node& one, const YAML::Node& node,
+                       const YAML::Node& parent, const std::string& key) const;
+  std::string discriminatorOf(const YAML::Node& one) const;
+  YAML::Node branchFor(const YAML::Node& one, const std::string& discriminator,
+                       const YAML::Node& tag) const;
+  std::string branchValues(const YAML::Node& one, const std::string& discriminator) const;
+
   YAML::Node resolve(const YAML::Node& schema) const;
   void checkKeywords(const YAML::Node& schema, const std::string& where) const;
 
