@@ -224,6 +224,49 @@ std::string unknownKeyMessage(const YAML::Node& props, const std::string& k) {
   return msg;
 }
 
+// A deep copy of a schema value as document nodes: scalars keep their text and tag (a quoted
+// string stays a string, 1e-06 stays the number it reads as); the copy has no mark (line).
+YAML::Node copyNode(const YAML::Node& v) {
+  switch (v.Type()) {
+    case YAML::NodeType::Scalar: {
+      YAML::Node n(v.Scalar());
+      n.SetTag(v.Tag());
+      return n;
+    }
+    case YAML::NodeType::Sequence: {
+      YAML::Node n(YAML::NodeType::Sequence);
+      for (const auto& x : v) n.push_back(copyNode(x));
+      return n;
+    }
+    case YAML::NodeType::Map: {
+      YAML::Node n(YAML::NodeType::Map);
+      for (const auto& kv : v) n[kv.first.Scalar()] = copyNode(kv.second);
+      return n;
+    }
+    default:
+      return YAML::Node(YAML::NodeType::Null);
+  }
+}
+
+// A schema value as JSON text for messages: 1e-06, "structured", [0, 0, 0], {}.
+std::string jsonText(const YAML::Node& v) {
+  if (v.IsScalar()) return isQuoted(v) ? "\"" + v.Scalar() + "\"" : v.Scalar();
+  if (!v.IsSequence() && !v.IsMap()) return "null";
+  Str s;
+  s << (v.IsSequence() ? "[" : "{");
+  bool first = true;
+  for (auto it = v.begin(); it != v.end(); ++it, first = false) {
+    s << (first ? "" : ", ");
+    if (v.IsSequence()) {
+      s << jsonText(*it);
+    } else {
+      s << "\"" << it->first.Scalar() << "\": " << jsonText(it->second);
+    }
+  }
+  s << (v.IsSequence() ? "]" : "}");
+  return s;
+}
+
 }  // namespace
 
 JsonSchema::JsonSchema(const std::string& text, const std::string& name) : name_(name) {
@@ -453,6 +496,82 @@ void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
     accepted = i;
   }
   if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
+}
+
+void JsonSchema::applyDefaults(YamlDocument& doc) const {
+  fillDefaults(doc, root_, doc.root, "");
+}
+
+void JsonSchema::fillDefaults(YamlDocument& doc, const YAML::Node& schemaIn, const YAML::Node& node,
+                              const std::string& key) const {
+  const YAML::Node schema = resolve(schemaIn);
+  if (!schema.IsMap()) return;
+  // The oneOf branch is chosen before this level changes: a default could sway the choice.
+  const YAML::Node one = schema["oneOf"];
+  const YAML::Node branch =
+      one ? chosenBranch(doc, one, node, key) : YAML::Node(YAML::NodeType::Undefined);
+  if (node.IsSequence()) {
+    if (const YAML::Node items = schema["items"]) {
+      for (std::size_t i = 0; i < node.size(); ++i)
+        fillDefaults(doc, items, node[i], Str() << key << "[" << i << "]");
+    }
+  }
+  if (node.IsMap()) fillProperties(doc, schema, node, key);
+  if (branch) fillDefaults(doc, branch, node, key);
+}
+
+// The properties of a mapping: absent ones with a default inserted, then each filled in turn;
+// the values of other keys by additionalProperties' schema.
+void JsonSchema::fillProperties(YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                                const std::string& key) const {
+  const YAML::Node props = schema["properties"];
+  if (props) {
+    for (const auto& p : props) {
+      const std::string name = p.first.Scalar();
+      if (!node[name]) insertDefault(doc, p.second, node, name, join(key, name));
+      if (const YAML::Node child = node[name]) fillDefaults(doc, p.second, child, join(key, name));
+    }
+  }
+  const YAML::Node additional = schema["additionalProperties"];
+  if (additional && additional.IsMap()) {
+    for (const auto& kv : node) {
+      const std::string k = kv.first.Scalar();
+      if (!props || !props[k]) fillDefaults(doc, additional, kv.second, join(key, k));
+    }
+  }
+}
+
+// Inserts property `name`'s default, if its schema has one (beside a $ref or behind it).
+void JsonSchema::insertDefault(YamlDocument& doc, const YAML::Node& propertySchema,
+                               const YAML::Node& map, const std::string& name,
+                               const std::string& key) const {
+  YAML::Node value;
+  if (propertySchema.IsMap() && propertySchema["default"]) {
+    value.reset(propertySchema["default"]);
+  } else if (const YAML::Node s = resolve(propertySchema); s.IsMap() && s["default"]) {
+    value.reset(s["default"]);
+  } else {
+    return;
+  }
+  YAML::Node target(map);  // the same node: yaml-cpp nodes are handles
+  target[name] = copyNode(value);
+  doc.defaults.push_back({key, jsonText(value), map[name]});
+}
+
+// The branch of a oneOf that applies to a valid node: the one its discriminator selects,
+// else the one that validates.
+YAML::Node JsonSchema::chosenBranch(const YamlDocument& doc, const YAML::Node& one,
+                                    const YAML::Node& node, const std::string& key) const {
+  const std::string d = discriminatorOf(one);
+  if (!d.empty() && node.IsMap()) return branchFor(one, d, node[d]);
+  for (const auto& branch : one) {
+    try {
+      check(doc, branch, node, node, key);
+      return branch;
+    } catch (const InputError&) {
+    }
+  }
+  return YAML::Node(YAML::NodeType::Undefined);
 }
 
 }  // namespace ffriga

@@ -13,6 +13,21 @@
 // user meant; other oneOf lists must have exactly one branch that validates.
 // The first violation found is thrown as InputError "FILE:LINE: key 'a.b[2]': ..." .
 //
+// Defaults: applyDefaults() completes a document that passed validate() with the schema's
+// `default`s, so that the programs need not repeat them. Every property the document lacks
+// whose schema (beside a $ref or behind it) has a `default` is inserted into the mapping the
+// schema describes: at every level of present mappings, into every item of a list (its
+// `items`), into the branch of a oneOf that applies (the one its discriminator selects, else
+// the one that validates: chosen before anything is inserted at that level), and into the
+// inserted values themselves (an absent object with `default: {}` is inserted, then filled
+// with its own properties' defaults). Present keys are never changed. The inserted value is
+// a deep copy of the schema's JSON as YAML nodes, scalars with their text and quoting (1e-06
+// reads back as the double 1e-6, "structured" stays a string), without a line; each
+// insertion is recorded in doc.defaults (key path, the default's JSON, the node), and an
+// error about such a node, or one inside it, reads "FILE: key 'K' (schema default V): ..."
+// (inputError, yaml_input.h). A mapping that YAML aliases share is filled at each place that
+// reaches it, so its defaults show at all of them.
+//
 // Held to the official JSON-Schema-Test-Suite (Debian json-schema-test-suite, draft 7: the
 // newest Debian 12 ships; for our keywords it agrees with 2020-12) by
 // tests/common/input/json_schema_suite_test.cc, for every keyword implemented here; what is not
@@ -46,6 +61,10 @@ class JsonSchema {
   // Throws InputError on the first violation.
   void validate(const YamlDocument& doc) const;
 
+  // Inserts the schema's defaults for absent properties into a document that passed
+  // validate() and records them in doc.defaults (see above).
+  void applyDefaults(YamlDocument& doc) const;
+
   const std::string& name() const { return name_; }
 
  private:
@@ -69,6 +88,16 @@ class JsonSchema {
   YAML::Node branchFor(const YAML::Node& one, const std::string& discriminator,
                        const YAML::Node& tag) const;
   std::string branchValues(const YAML::Node& one, const std::string& discriminator) const;
+
+  // applyDefaults() on `node`, the value at `key` that `schema` describes.
+  void fillDefaults(YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                    const std::string& key) const;
+  void fillProperties(YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
+                      const std::string& key) const;
+  void insertDefault(YamlDocument& doc, const YAML::Node& propertySchema, const YAML::Node& map,
+                     const std::string& name, const std::string& key) const;
+  YAML::Node chosenBranch(const YamlDocument& doc, const YAML::Node& one, const YAML::Node& node,
+                          const std::string& key) const;
 
   YAML::Node resolve(const YAML::Node& schema) const;
   void checkKeywords(const YAML::Node& schema, const std::string& where) const;

@@ -135,12 +135,27 @@ const YamlOverride* overrideOf(const YamlDocument& doc, const YAML::Node& node,
   return from;
 }
 
+// The innermost schema default that holds `node` (defaults are recorded outside in).
+const YamlDefault* defaultOf(const YamlDocument& doc, const YAML::Node& node) {
+  const YamlDefault* from = nullptr;
+  for (const YamlDefault& d : doc.defaults)
+    if (within(node, d.node)) from = &d;
+  return from;
+}
+
 }  // namespace
 
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message) {
   Str s;
   s << doc.path;
+  // A default lies inside the mapping it completes, which an override may have put there:
+  // the default is the nearer cause.
+  if (const YamlDefault* d = defaultOf(doc, node)) {
+    s << ": key '" << (key.empty() ? d->key : key) << "' (schema default " << d->text
+      << "): " << message;
+    return InputError(s);
+  }
   const YamlOverride* from = overrideOf(doc, node, key);
   const int line = from ? 0 : yamlLine(node);
   if (line > 0) s << ":" << line;

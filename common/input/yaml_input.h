@@ -22,11 +22,21 @@ struct YamlOverride {
   YAML::Node node;
 };
 
+// A property that a schema's `default` put into a document (JsonSchema::applyDefaults): its
+// key path, the default as the schema writes it and the node it put into the tree (errors
+// about it name the default instead of a line).
+struct YamlDefault {
+  std::string key;   // as errors name it: "integrator.rtol", "bodies[0].position"
+  std::string text;  // the schema's value, JSON: 1e-06, [0, 0, 0], "structured", {}
+  YAML::Node node;
+};
+
 struct YamlDocument {
   std::string path;  // as given by the user
   std::string text;  // the file's contents, kept for provenance
   YAML::Node root;
   std::vector<YamlOverride> overrides;  // --set, in order
+  std::vector<YamlDefault> defaults;    // inserted by JsonSchema::applyDefaults, in order
 };
 
 // Reads and parses a YAML file. Throws InputError if the file cannot be read, is not valid
@@ -39,7 +49,8 @@ YamlDocument parseYamlText(const std::string& text, const std::string& path);
 int yamlLine(const YAML::Node& node);
 
 // "FILE:LINE: key 'KEY': MESSAGE" as an InputError; for a node an override put into the
-// tree (or one inside it): "FILE: --set 'KEY=VALUE': key 'KEY': MESSAGE".
+// tree (or one inside it): "FILE: --set 'KEY=VALUE': key 'KEY': MESSAGE"; for a node a
+// schema default put there (or one inside it): "FILE: key 'KEY' (schema default V): MESSAGE".
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message);
 
