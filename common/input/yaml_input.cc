@@ -33,30 +33,110 @@ std::string childKey(const std::string& parent, const std::string& key) {
   return parent.empty() ? key : parent + "." + key;
 }
 
-// Walks the whole tree once: duplicate keys of a mapping (yaml-cpp keeps both and a lookup
-// sees one of them: the other would be ignored without a word) and numbers that are not
-// finite are errors, naming the key path and the lines.
-void checkTree(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
-  if (node.IsMap()) {
+// Limits on a document's tree with its aliases expanded. yaml-cpp keeps an alias as the node
+// it names (shared, not copied), so nine lines of nested aliases make a tree of 9^9 nodes (an
+// "alias bomb") that a walk takes minutes for, and an alias inside the node it names makes a
+// cycle that a walk never leaves. The largest shipped file (configs/scenes/
+// pendulums_rigid.yaml) has 243 values and nests 7 levels; a hand-written explicit NURBS
+// patch of 10^5 control points stays below the million, which this walk refuses after
+// 0.1 s, and 64 levels keep the recursive walks (here, the schema check, inputError) far
+// from the end of the stack.
+constexpr std::size_t kMaxNodes = 1000000;
+constexpr std::size_t kMaxDepth = 64;
+
+// Walks the whole tree once, before anything else does: duplicate keys of a mapping
+// (yaml-cpp keeps both and a lookup sees one of them: the other would be ignored without a
+// word) and numbers that are not finite are errors, naming the key path and the lines; so
+// are trees beyond the limits above.
+class TreeCheck {
+ public:
+  explicit TreeCheck(const YamlDocument& doc) : doc_(doc) {}
+
+  void visit(const YAML::Node& node) {
+    checkLimits(node);
+    if (node.IsMap()) {
+      path_.push_back(node);
+      visitMap(node);
+      path_.pop_back();
+    } else if (node.IsSequence()) {
+      path_.push_back(node);
+      std::size_t i = 0;
+      for (auto it = node.begin(); it != node.end(); ++it, ++i) {
+        keys_.push_back({nullptr, i});
+        visit(*it);
+        keys_.pop_back();
+      }
+      path_.pop_back();
+    } else if (isNonFiniteNumber(node)) {
+      throw inputError(doc_, node, key(),
+                       Str() << "expected a finite number, found " << node.Scalar());
+    }
+  }
+
+ private:
+  // A step of the key path: a mapping's key, or (name null) a list's index.
+  struct Step {
+    const std::string* name;
+    std::size_t index;
+  };
+
+  void visitMap(const YAML::Node& node) {
     std::map<std::string, int> seen;  // key -> its line
     for (auto it = node.begin(); it != node.end(); ++it) {
       const std::string name = it->first.IsScalar() ? it->first.Scalar() : describeNode(it->first);
       const auto [prev, inserted] = seen.emplace(name, yamlLine(it->first));
+      keys_.push_back({&name, 0});
       if (!inserted) {
-        throw inputError(doc, it->first, childKey(key, name),
+        throw inputError(doc_, it->first, key(),
                          Str() << "duplicate key: also given on line " << prev->second
                                << " (each key may appear once in a mapping)");
       }
-      checkTree(doc, it->second, childKey(key, name));
+      visit(it->second);
+      keys_.pop_back();
     }
-  } else if (node.IsSequence()) {
-    for (std::size_t i = 0; i < node.size(); ++i)
-      checkTree(doc, node[i], Str() << key << "[" << i << "]");
-  } else if (isNonFiniteNumber(node)) {
-    throw inputError(doc, node, key,
-                     Str() << "expected a finite number, found " << node.Scalar());
   }
-}
+
+  void checkLimits(const YAML::Node& node) {
+    if (++nodes_ > kMaxNodes) {
+      throw inputError(doc_, node, key(),
+                       Str() << "expected at most " << kMaxNodes
+                             << " values in the document with its aliases expanded, found more "
+                             << "(aliases nested in aliases?)");
+    }
+    if (!node.IsMap() && !node.IsSequence()) return;
+    for (const YAML::Node& open : path_) {
+      if (node.is(open)) {
+        throw inputError(doc_, node, key(),
+                         "expected a tree, found an alias of a mapping or list that contains "
+                         "it (a cycle)");
+      }
+    }
+    if (path_.size() >= kMaxDepth) {
+      throw inputError(
+          doc_, node, key(),
+          Str() << "expected at most " << kMaxDepth << " levels of nesting, found more");
+    }
+  }
+
+  // The key path of the node visited, as errors name it: "a.b[2].c" (built only for errors:
+  // the walk may visit a million nodes).
+  std::string key() const {
+    std::string k;
+    for (const Step& s : keys_) {
+      if (s.name) {
+        k = childKey(k, *s.name);
+      } else {
+        k += "[" + std::to_string(s.index) + "]";
+      }
+    }
+    return k;
+  }
+
+  const YamlDocument& doc_;
+  std::size_t nodes_ = 0;
+  std::vector<YAML::Node> path_;  // the mappings and lists that hold the node visited
+  std::vector<Step> keys_;        // the path to it
+};
 
 }  // namespace
 
@@ -72,7 +152,7 @@ YamlDocument parseYamlText(const std::string& text, const std::string& path) {
   if (!doc.root || doc.root.IsNull()) {
     throw InputError(Str() << path << ":1: the file is empty, expected a YAML mapping");
   }
-  checkTree(doc, doc.root, "");
+  TreeCheck(doc).visit(doc.root);
   return doc;
 }
 
