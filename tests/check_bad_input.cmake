@@ -3,7 +3,8 @@
 # files, tests/bad_input/), ffrsim (scenes, tests/bad_scenes/) and the study workflow (study
 # files, tests/bad_studies/).
 # Each case file starts with a comment line "# expect: TEXT" giving a text the message must
-# contain. Optional lines "# output: yes" (run with -o OUT: the error comes from the
+# contain. A case may be a folder named like a case file (the program is given the folder);
+# its expectations are then in the file README inside it. Optional lines "# output: yes" (run with -o OUT: the error comes from the
 # pipeline, and no output or temporary file may be left behind) and "# exit: N" (expected
 # exit code, default 2); "# also: TEXT" (a second text the message must contain).
 # Variables: PROGRAM, CASES_DIR, OUT_DIR; PROGRAM_ARGS (put before every run's arguments,
@@ -38,7 +39,11 @@ function(expect_error args expected what)
   endif()
 endfunction()
 foreach(case IN LISTS cases)
-  file(STRINGS "${case}" head LIMIT_COUNT 4)
+  if(IS_DIRECTORY "${case}")
+    file(STRINGS "${case}/README" head LIMIT_COUNT 4)
+  else()
+    file(STRINGS "${case}" head LIMIT_COUNT 4)
+  endif()
   list(GET head 0 first)
   string(REGEX REPLACE "^# expect: " "" expected "${first}")
   set(args "${case}")

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -157,6 +158,11 @@ YamlDocument parseYamlText(const std::string& text, const std::string& path) {
 }
 
 YamlDocument loadYamlFile(const std::string& path) {
+  // A folder opens as a file that reads as empty: name it.
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(Str() << path << ": is a folder, expected a YAML file");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(Str() << path << ": cannot open file (" << std::strerror(errno) << ")");
