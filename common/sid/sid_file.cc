@@ -232,6 +232,131 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   }
 }
 
+// Root attributes: the format and its version first, then the body's identity and counts.
+void readHeader(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  if (!h5::hasAttribute(file, "format")) c.fail("not a SID file (no root attribute 'format')");
+  const std::string format = h5::readStringAttribute(c, file, "format");
+  if (format != kSidFormat) {
+    c.fail(Str() << "not a SID file: format is '" << format << "', expected '" << kSidFormat
+                 << "'");
+  }
+  const int version = h5::readIntAttribute(c, file, "format_version");
+  if (version != kSidFormatVersion) {
+    c.fail(Str() << "SID format_version " << version << " is not supported (this program reads "
+                 << "version " << kSidFormatVersion << "); rerun igaprep");
+  }
+  sid->created_by = h5::readStringAttribute(c, file, "created_by");
+  sid->name = h5::readStringAttribute(c, file, "name");
+  sid->model = h5::readStringAttribute(c, file, "model");
+  sid->space_dim = h5::readIntAttribute(c, file, "space_dim");
+  sid->ndof = h5::readIntAttribute(c, file, "ndof");
+  sid->nlvl = h5::readIntAttribute(c, file, "nlvl");
+  sid->n_elements = h5::readIntAttribute(c, file, "n_elements");
+  sid->n_interface_control_points = h5::readIntAttribute(c, file, "n_interface_control_points");
+  sid->preprocessing_time_s = h5::readDoubleAttribute(c, file, "preprocessing_time_s");
+  sid->frame = h5::readStringAttribute(c, file, "frame");
+  sid->reduction = h5::readStringAttribute(c, file, "reduction");
+  sid->normal_modes = h5::readIntAttribute(c, file, "normal_modes");
+  sid->constraint_modes = h5::readIntAttribute(c, file, "constraint_modes");
+  sid->rigid_modes_dropped = h5::readIntAttribute(c, file, "rigid_modes_dropped");
+}
+
+// /sid/Cr1 and /sid/J1: the first-order terms in q, stored as [nq, 3, nq] and [nq, 3, 3].
+void readFirstOrderTerms(const Context& c, hid_t g, FlexibleBodySid* sid) {
+  const int nq = sid->nq();
+  std::vector<hsize_t> dims;
+  const std::vector<double> cr1 = h5::readArray(c, g, "Cr1", &dims);
+  if (dims != std::vector<hsize_t>{hsize_t(nq), 3, hsize_t(nq)})
+    c.fail("/sid/Cr1 has wrong dimensions");
+  sid->Cr1.assign(nq, Eigen::MatrixXd(3, nq));
+  for (int j = 0; j < nq; ++j)
+    for (int r = 0; r < 3; ++r)
+      for (int i = 0; i < nq; ++i)
+        sid->Cr1[j](r, i) = cr1[(static_cast<std::size_t>(j) * 3 + r) * nq + i];
+  const std::vector<double> j1 = h5::readArray(c, g, "J1", &dims);
+  if (dims != std::vector<hsize_t>{hsize_t(nq), 3, 3}) c.fail("/sid/J1 has wrong dimensions");
+  sid->J1.assign(nq, Eigen::Matrix3d::Zero());
+  for (int j = 0; j < nq; ++j)
+    for (int r = 0; r < 3; ++r)
+      for (int i = 0; i < 3; ++i) sid->J1[j](r, i) = j1[(j * 3 + r) * 3 + i];
+}
+
+// /sid: the rigid-body and elastic invariants.
+void readInvariants(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  Handle g = h5::openGroup(c, file, "sid");
+  sid->mass = h5::readScalar(c, g, "mass");
+  sid->first_moment = h5::readVector(c, g, "first_moment");
+  sid->inertia = h5::readMatrix(c, g, "inertia");
+  sid->frame_origin = h5::readVector(c, g, "frame_origin");
+  sid->frequencies_hz = h5::readVector(c, g, "frequencies_hz");
+  sid->damping_ratio = h5::readVector(c, g, "damping_ratio");
+  sid->Me = h5::readMatrix(c, g, "Me");
+  sid->Ke = h5::readMatrix(c, g, "Ke");
+  sid->De = h5::readMatrix(c, g, "De");
+  sid->Ct = h5::readMatrix(c, g, "Ct");
+  sid->Cr0 = h5::readMatrix(c, g, "Cr0");
+  if (h5::readIntAttribute(c, file, "nq") != sid->nq())
+    c.fail("root attribute nq disagrees with /sid");
+  readFirstOrderTerms(c, g, sid);
+  sid->Oe = h5::readMatrix(c, g, "Oe");
+}
+
+// /body: the control points, their weights and the modes at them.
+void readBodyModes(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  Handle b = h5::openGroup(c, file, "body");
+  sid->control_points = h5::readMatrix(c, b, "control_points");
+  sid->weights = h5::readVector(c, b, "weights");
+  sid->Phi = h5::readMatrix(c, b, "Phi");
+}
+
+// /markers and /contact_surfaces.
+void readMarkersAndSurfaces(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  Handle m = h5::openGroup(c, file, "markers");
+  for (const std::string& name : h5::listGroup(c, m)) {
+    Handle mg = h5::openGroup(c, m, name);
+    Marker mk;
+    mk.name = name;
+    mk.position = h5::readVector(c, mg, "position");
+    mk.functions = h5::readInts(c, mg, "functions");
+    mk.values = h5::readVector(c, mg, "values");
+    if (h5::exists(mg, "Psi")) {
+      mk.Psi = h5::readMatrix(c, mg, "Psi");
+      if (mk.Psi.rows() != 3 || mk.Psi.cols() != sid->nq())
+        c.fail(Str() << "/markers/" << name << "/Psi is " << mk.Psi.rows() << "x" << mk.Psi.cols()
+                     << ", expected 3x" << sid->nq());
+    }
+    sid->markers.push_back(std::move(mk));
+  }
+  Handle s = h5::openGroup(c, file, "contact_surfaces");
+  for (const std::string& name : h5::listGroup(c, s))
+    sid->surfaces.push_back(readSurface(c, s, name));
+}
+
+// /provenance: the body file, its overrides and the stage times (not checked: records only).
+void readProvenance(const Context& c, hid_t file, FlexibleBodySid* sid) {
+  Handle p = h5::openGroup(c, file, "provenance");
+  sid->input_yaml = h5::readStringAttribute(c, p, "input_yaml");
+  sid->input_path = h5::readStringAttribute(c, p, "input_path");
+  if (h5::hasAttribute(p, "overrides"))  // provenance only: optional
+    sid->input_overrides = h5::readStringAttribute(c, p, "overrides");
+  Handle t = h5::openGroup(c, p, "stage_times_s");
+  const int na = H5Aget_num_attrs(t);
+  if (na < 0) c.fail("stage_times_s: cannot count attributes");
+  for (int i = 0; i < na; ++i) {
+    Handle attr(
+        c.check(H5Aopen_by_idx(t, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT),
+                "open stage time"),
+        H5Aclose);
+    char name[256] = {0};
+    if (H5Aget_name(attr, sizeof(name), name) < 0) c.fail("stage time name");
+    double v = 0.0;
+    c.check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read stage time", 0);
+    std::string n = name;
+    if (n.size() > 3 && n[2] == '_') n = n.substr(3);
+    sid->stage_times_s.emplace_back(n, v);
+  }
+}
+
 }  // namespace
 
 void writeSid(const FlexibleBodySid& sid, const std::string& path) {
@@ -264,111 +389,13 @@ FlexibleBodySid readSid(const std::string& path, SidContent content) {
   }
   if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError(path + ": not an HDF5 file");
   Handle file(c.check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open file"), H5Fclose);
-  if (!h5::hasAttribute(file, "format")) c.fail("not a SID file (no root attribute 'format')");
-  const std::string format = h5::readStringAttribute(c, file, "format");
-  if (format != kSidFormat) {
-    c.fail(Str() << "not a SID file: format is '" << format << "', expected '" << kSidFormat
-                 << "'");
-  }
-  const int version = h5::readIntAttribute(c, file, "format_version");
-  if (version != kSidFormatVersion) {
-    c.fail(Str() << "SID format_version " << version << " is not supported (this program reads "
-                 << "version " << kSidFormatVersion << "); rerun igaprep");
-  }
   FlexibleBodySid sid;
-  sid.created_by = h5::readStringAttribute(c, file, "created_by");
-  sid.name = h5::readStringAttribute(c, file, "name");
-  sid.model = h5::readStringAttribute(c, file, "model");
-  sid.space_dim = h5::readIntAttribute(c, file, "space_dim");
-  sid.ndof = h5::readIntAttribute(c, file, "ndof");
-  sid.nlvl = h5::readIntAttribute(c, file, "nlvl");
-  sid.n_elements = h5::readIntAttribute(c, file, "n_elements");
-  sid.n_interface_control_points = h5::readIntAttribute(c, file, "n_interface_control_points");
-  sid.preprocessing_time_s = h5::readDoubleAttribute(c, file, "preprocessing_time_s");
-  sid.frame = h5::readStringAttribute(c, file, "frame");
-  sid.reduction = h5::readStringAttribute(c, file, "reduction");
-  sid.normal_modes = h5::readIntAttribute(c, file, "normal_modes");
-  sid.constraint_modes = h5::readIntAttribute(c, file, "constraint_modes");
-  sid.rigid_modes_dropped = h5::readIntAttribute(c, file, "rigid_modes_dropped");
-
-  Handle g = h5::openGroup(c, file, "sid");
-  sid.mass = h5::readScalar(c, g, "mass");
-  sid.first_moment = h5::readVector(c, g, "first_moment");
-  sid.inertia = h5::readMatrix(c, g, "inertia");
-  sid.frame_origin = h5::readVector(c, g, "frame_origin");
-  sid.frequencies_hz = h5::readVector(c, g, "frequencies_hz");
-  sid.damping_ratio = h5::readVector(c, g, "damping_ratio");
-  sid.Me = h5::readMatrix(c, g, "Me");
-  sid.Ke = h5::readMatrix(c, g, "Ke");
-  sid.De = h5::readMatrix(c, g, "De");
-  sid.Ct = h5::readMatrix(c, g, "Ct");
-  sid.Cr0 = h5::readMatrix(c, g, "Cr0");
-  const int nq = sid.nq();
-  if (h5::readIntAttribute(c, file, "nq") != nq) c.fail("root attribute nq disagrees with /sid");
-  std::vector<hsize_t> dims;
-  const std::vector<double> cr1 = h5::readArray(c, g, "Cr1", &dims);
-  if (dims != std::vector<hsize_t>{hsize_t(nq), 3, hsize_t(nq)})
-    c.fail("/sid/Cr1 has wrong dimensions");
-  sid.Cr1.assign(nq, Eigen::MatrixXd(3, nq));
-  for (int j = 0; j < nq; ++j)
-    for (int r = 0; r < 3; ++r)
-      for (int i = 0; i < nq; ++i)
-        sid.Cr1[j](r, i) = cr1[(static_cast<std::size_t>(j) * 3 + r) * nq + i];
-  const std::vector<double> j1 = h5::readArray(c, g, "J1", &dims);
-  if (dims != std::vector<hsize_t>{hsize_t(nq), 3, 3}) c.fail("/sid/J1 has wrong dimensions");
-  sid.J1.assign(nq, Eigen::Matrix3d::Zero());
-  for (int j = 0; j < nq; ++j)
-    for (int r = 0; r < 3; ++r)
-      for (int i = 0; i < 3; ++i) sid.J1[j](r, i) = j1[(j * 3 + r) * 3 + i];
-  sid.Oe = h5::readMatrix(c, g, "Oe");
-
-  Handle b = h5::openGroup(c, file, "body");
-  sid.control_points = h5::readMatrix(c, b, "control_points");
-  sid.weights = h5::readVector(c, b, "weights");
-  sid.Phi = h5::readMatrix(c, b, "Phi");
-
-  Handle m = h5::openGroup(c, file, "markers");
-  for (const std::string& name : h5::listGroup(c, m)) {
-    Handle mg = h5::openGroup(c, m, name);
-    Marker mk;
-    mk.name = name;
-    mk.position = h5::readVector(c, mg, "position");
-    mk.functions = h5::readInts(c, mg, "functions");
-    mk.values = h5::readVector(c, mg, "values");
-    if (h5::exists(mg, "Psi")) {
-      mk.Psi = h5::readMatrix(c, mg, "Psi");
-      if (mk.Psi.rows() != 3 || mk.Psi.cols() != sid.nq())
-        c.fail(Str() << "/markers/" << name << "/Psi is " << mk.Psi.rows() << "x" << mk.Psi.cols()
-                     << ", expected 3x" << sid.nq());
-    }
-    sid.markers.push_back(std::move(mk));
-  }
-  Handle s = h5::openGroup(c, file, "contact_surfaces");
-  for (const std::string& name : h5::listGroup(c, s))
-    sid.surfaces.push_back(readSurface(c, s, name));
+  readHeader(c, file, &sid);
+  readInvariants(c, file, &sid);
+  readBodyModes(c, file, &sid);
+  readMarkersAndSurfaces(c, file, &sid);
   readBodyDescription(c, file, content, &sid);
-
-  Handle p = h5::openGroup(c, file, "provenance");
-  sid.input_yaml = h5::readStringAttribute(c, p, "input_yaml");
-  sid.input_path = h5::readStringAttribute(c, p, "input_path");
-  if (h5::hasAttribute(p, "overrides"))  // provenance only: optional
-    sid.input_overrides = h5::readStringAttribute(c, p, "overrides");
-  Handle t = h5::openGroup(c, p, "stage_times_s");
-  const int na = H5Aget_num_attrs(t);
-  if (na < 0) c.fail("stage_times_s: cannot count attributes");
-  for (int i = 0; i < na; ++i) {
-    Handle attr(
-        c.check(H5Aopen_by_idx(t, ".", H5_INDEX_NAME, H5_ITER_INC, i, H5P_DEFAULT, H5P_DEFAULT),
-                "open stage time"),
-        H5Aclose);
-    char name[256] = {0};
-    if (H5Aget_name(attr, sizeof(name), name) < 0) c.fail("stage time name");
-    double v = 0.0;
-    c.check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "read stage time", 0);
-    std::string n = name;
-    if (n.size() > 3 && n[2] == '_') n = n.substr(3);
-    sid.stage_times_s.emplace_back(n, v);
-  }
+  readProvenance(c, file, &sid);
   return sid;
 }
 
