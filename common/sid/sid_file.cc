@@ -1,5 +1,6 @@
 #include "common/sid/sid_file.h"
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 
@@ -15,6 +16,68 @@ namespace {
 
 using h5::Context;
 using h5::Handle;
+
+// Real data read from a SID must be finite: a NaN or an infinity (a damaged or hand-edited
+// file) would reach the integrator and fail far from its cause, or not at all.
+std::string nonFiniteText(double v) {
+  return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
+}
+
+[[noreturn]] void notFinite(const Context& c, const std::string& what, double v,
+                            const std::string& at) {
+  c.fail(Str() << what << ": expected a finite number, found " << nonFiniteText(v) << at);
+}
+
+// A matrix or vector read from dataset `path`; the first bad entry by its 0-based index in
+// the file ([row, column] or [i]).
+template <typename Derived>
+void requireFinite(const Context& c, const std::string& path, const Eigen::DenseBase<Derived>& m) {
+  if (m.allFinite()) return;
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    for (Eigen::Index j = 0; j < m.cols(); ++j) {
+      if (std::isfinite(m(i, j))) continue;
+      const std::string at = Derived::ColsAtCompileTime == 1
+                                 ? std::string(Str() << " at [" << i << "]")
+                                 : std::string(Str() << " at [" << i << ", " << j << "]");
+      notFinite(c, "dataset '" + path + "'", m(i, j), at);
+    }
+  }
+}
+
+// A dataset of any rank read as a flat row-major array with its dimensions.
+void requireFinite(const Context& c, const std::string& path, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims) {
+  for (std::size_t k = 0; k < data.size(); ++k) {
+    if (std::isfinite(data[k])) continue;
+    std::vector<hsize_t> index(dims.size());
+    for (std::size_t d = dims.size(), rest = k; d-- > 0; rest /= dims[d]) index[d] = rest % dims[d];
+    Str at;
+    at << " at [";
+    for (std::size_t d = 0; d < index.size(); ++d) at << (d ? ", " : "") << index[d];
+    notFinite(c, "dataset '" + path + "'", data[k], at.str() + "]");
+  }
+}
+
+// The checked readers: `group` is the group's path in the file ("/sid"), for messages.
+double finiteScalar(const Context& c, hid_t g, const std::string& group, const std::string& name) {
+  const double v = h5::readScalar(c, g, name);
+  if (!std::isfinite(v)) notFinite(c, "dataset '" + group + "/" + name + "'", v, "");
+  return v;
+}
+
+Eigen::VectorXd finiteVector(const Context& c, hid_t g, const std::string& group,
+                             const std::string& name) {
+  Eigen::VectorXd v = h5::readVector(c, g, name);
+  requireFinite(c, group + "/" + name, v);
+  return v;
+}
+
+Eigen::MatrixXd finiteMatrix(const Context& c, hid_t g, const std::string& group,
+                             const std::string& name) {
+  Eigen::MatrixXd m = h5::readMatrix(c, g, name);
+  requireFinite(c, group + "/" + name, m);
+  return m;
+}
 
 void writeSurface(const Context& c, hid_t parent, const ContactSurface& s) {
   Handle g = h5::createGroup(c, parent, s.name);
@@ -46,26 +109,29 @@ void writeSurface(const Context& c, hid_t parent, const ContactSurface& s) {
 
 ContactSurface readSurface(const Context& c, hid_t parent, const std::string& name) {
   Handle g = h5::openGroup(c, parent, name);
+  const std::string where = "/contact_surfaces/" + name;
   ContactSurface s;
   s.name = name;
   s.dim = h5::readIntAttribute(c, g, "dim");
   s.outward_sign = h5::readDoubleAttribute(c, g, "outward_sign");
+  if (!std::isfinite(s.outward_sign))
+    notFinite(c, "attribute '" + where + "/outward_sign'", s.outward_sign, "");
   s.degrees = h5::readInts(c, g, "degrees");
-  s.element_lower = h5::readMatrix(c, g, "element_lower");
-  s.element_upper = h5::readMatrix(c, g, "element_upper");
+  s.element_lower = finiteMatrix(c, g, where, "element_lower");
+  s.element_upper = finiteMatrix(c, g, where, "element_upper");
   s.element_level = h5::readInts(c, g, "element_level");
   s.function_offsets = h5::readInts(c, g, "function_offsets");
   s.functions = h5::readInts(c, g, "functions");
-  const Eigen::MatrixXd C = h5::readMatrix(c, g, "extraction");
+  const Eigen::MatrixXd C = finiteMatrix(c, g, where, "extraction");
   for (std::size_t e = 0; e + 1 < s.function_offsets.size(); ++e) {
     const int a = s.function_offsets[e], b = s.function_offsets[e + 1];
     if (a < 0 || b < a || b > C.rows())
       c.fail("contact surface " + name + ": bad function_offsets");
     s.extraction.push_back(C.middleRows(a, b - a));
   }
-  s.collocation_points = h5::readMatrix(c, g, "collocation_points");
+  s.collocation_points = finiteMatrix(c, g, where, "collocation_points");
   s.collocation_element = h5::readInts(c, g, "collocation_element");
-  s.collocation_weights = h5::readVector(c, g, "collocation_weights");
+  s.collocation_weights = finiteVector(c, g, where, "collocation_weights");
   return s;
 }
 
@@ -79,10 +145,10 @@ void writeSamples(const Context& c, hid_t g, const SampledModes& m, bool single)
 
 SampledModes readSamples(const Context& c, hid_t g, const std::string& where, int s, int nq) {
   SampledModes m;
-  m.points = h5::readMatrix(c, g, "points");
-  m.parameters = h5::readMatrix(c, g, "parameters");
-  m.Phi = h5::readMatrix(c, g, "Phi");
-  m.stress = h5::readMatrix(c, g, "stress");
+  m.points = finiteMatrix(c, g, where, "points");
+  m.parameters = finiteMatrix(c, g, where, "parameters");
+  m.Phi = finiteMatrix(c, g, where, "Phi");
+  m.stress = finiteMatrix(c, g, where, "stress");
   const Eigen::Index np = m.points.rows();
   if (m.points.cols() != s || m.parameters.rows() != np || m.Phi.rows() != np * s ||
       m.Phi.cols() != nq || m.stress.rows() != np * 6 || m.stress.cols() != nq) {
@@ -120,14 +186,14 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
 void readBodyDescription(const Context& c, hid_t file, SidContent content, FlexibleBodySid* sid) {
   const int s = sid->space_dim, nq = sid->nq();
   Handle m = h5::openGroup(c, file, "material");
-  sid->material.youngs_modulus = h5::readScalar(c, m, "youngs_modulus");
-  sid->material.poisson_ratio = h5::readScalar(c, m, "poisson_ratio");
-  sid->material.density = h5::readScalar(c, m, "density");
+  sid->material.youngs_modulus = finiteScalar(c, m, "/material", "youngs_modulus");
+  sid->material.poisson_ratio = finiteScalar(c, m, "/material", "poisson_ratio");
+  sid->material.density = finiteScalar(c, m, "/material", "density");
   Handle g = h5::openGroup(c, file, "geometry");
   sid->geometry.type = h5::readStringAttribute(c, g, "type");
-  sid->geometry.radius = h5::readScalar(c, g, "radius");
-  sid->geometry.length = h5::readScalar(c, g, "length");
-  const Eigen::VectorXd centre = h5::readVector(c, g, "centre");
+  sid->geometry.radius = finiteScalar(c, g, "/geometry", "radius");
+  sid->geometry.length = finiteScalar(c, g, "/geometry", "length");
+  const Eigen::VectorXd centre = finiteVector(c, g, "/geometry", "centre");
   if (centre.size() != 3) c.fail("/geometry/centre must have 3 components");
   sid->geometry.centre = centre;
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
@@ -146,8 +212,8 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
     Handle lg = h5::openGroup(c, l, name);
     StressLine line;
     line.name = name;
-    line.from = h5::readVector(c, lg, "from");
-    line.to = h5::readVector(c, lg, "to");
+    line.from = finiteVector(c, lg, "/stress_lines/" + name, "from");
+    line.to = finiteVector(c, lg, "/stress_lines/" + name, "to");
     line.samples = readSamples(c, lg, "/stress_lines/" + name, s, nq);
     sid->stress_lines.push_back(std::move(line));
   }
@@ -268,6 +334,7 @@ void readFirstOrderTerms(const Context& c, hid_t g, FlexibleBodySid* sid) {
   const std::vector<double> cr1 = h5::readArray(c, g, "Cr1", &dims);
   if (dims != std::vector<hsize_t>{hsize_t(nq), 3, hsize_t(nq)})
     c.fail("/sid/Cr1 has wrong dimensions");
+  requireFinite(c, "/sid/Cr1", cr1, dims);
   sid->Cr1.assign(nq, Eigen::MatrixXd(3, nq));
   for (int j = 0; j < nq; ++j)
     for (int r = 0; r < 3; ++r)
@@ -275,6 +342,7 @@ void readFirstOrderTerms(const Context& c, hid_t g, FlexibleBodySid* sid) {
         sid->Cr1[j](r, i) = cr1[(static_cast<std::size_t>(j) * 3 + r) * nq + i];
   const std::vector<double> j1 = h5::readArray(c, g, "J1", &dims);
   if (dims != std::vector<hsize_t>{hsize_t(nq), 3, 3}) c.fail("/sid/J1 has wrong dimensions");
+  requireFinite(c, "/sid/J1", j1, dims);
   sid->J1.assign(nq, Eigen::Matrix3d::Zero());
   for (int j = 0; j < nq; ++j)
     for (int r = 0; r < 3; ++r)
@@ -284,29 +352,29 @@ void readFirstOrderTerms(const Context& c, hid_t g, FlexibleBodySid* sid) {
 // /sid: the rigid-body and elastic invariants.
 void readInvariants(const Context& c, hid_t file, FlexibleBodySid* sid) {
   Handle g = h5::openGroup(c, file, "sid");
-  sid->mass = h5::readScalar(c, g, "mass");
-  sid->first_moment = h5::readVector(c, g, "first_moment");
-  sid->inertia = h5::readMatrix(c, g, "inertia");
-  sid->frame_origin = h5::readVector(c, g, "frame_origin");
-  sid->frequencies_hz = h5::readVector(c, g, "frequencies_hz");
-  sid->damping_ratio = h5::readVector(c, g, "damping_ratio");
-  sid->Me = h5::readMatrix(c, g, "Me");
-  sid->Ke = h5::readMatrix(c, g, "Ke");
-  sid->De = h5::readMatrix(c, g, "De");
-  sid->Ct = h5::readMatrix(c, g, "Ct");
-  sid->Cr0 = h5::readMatrix(c, g, "Cr0");
+  sid->mass = finiteScalar(c, g, "/sid", "mass");
+  sid->first_moment = finiteVector(c, g, "/sid", "first_moment");
+  sid->inertia = finiteMatrix(c, g, "/sid", "inertia");
+  sid->frame_origin = finiteVector(c, g, "/sid", "frame_origin");
+  sid->frequencies_hz = finiteVector(c, g, "/sid", "frequencies_hz");
+  sid->damping_ratio = finiteVector(c, g, "/sid", "damping_ratio");
+  sid->Me = finiteMatrix(c, g, "/sid", "Me");
+  sid->Ke = finiteMatrix(c, g, "/sid", "Ke");
+  sid->De = finiteMatrix(c, g, "/sid", "De");
+  sid->Ct = finiteMatrix(c, g, "/sid", "Ct");
+  sid->Cr0 = finiteMatrix(c, g, "/sid", "Cr0");
   if (h5::readIntAttribute(c, file, "nq") != sid->nq())
     c.fail("root attribute nq disagrees with /sid");
   readFirstOrderTerms(c, g, sid);
-  sid->Oe = h5::readMatrix(c, g, "Oe");
+  sid->Oe = finiteMatrix(c, g, "/sid", "Oe");
 }
 
 // /body: the control points, their weights and the modes at them.
 void readBodyModes(const Context& c, hid_t file, FlexibleBodySid* sid) {
   Handle b = h5::openGroup(c, file, "body");
-  sid->control_points = h5::readMatrix(c, b, "control_points");
-  sid->weights = h5::readVector(c, b, "weights");
-  sid->Phi = h5::readMatrix(c, b, "Phi");
+  sid->control_points = finiteMatrix(c, b, "/body", "control_points");
+  sid->weights = finiteVector(c, b, "/body", "weights");
+  sid->Phi = finiteMatrix(c, b, "/body", "Phi");
 }
 
 // /markers and /contact_surfaces.
@@ -314,13 +382,14 @@ void readMarkersAndSurfaces(const Context& c, hid_t file, FlexibleBodySid* sid) 
   Handle m = h5::openGroup(c, file, "markers");
   for (const std::string& name : h5::listGroup(c, m)) {
     Handle mg = h5::openGroup(c, m, name);
+    const std::string where = "/markers/" + name;
     Marker mk;
     mk.name = name;
-    mk.position = h5::readVector(c, mg, "position");
+    mk.position = finiteVector(c, mg, where, "position");
     mk.functions = h5::readInts(c, mg, "functions");
-    mk.values = h5::readVector(c, mg, "values");
+    mk.values = finiteVector(c, mg, where, "values");
     if (h5::exists(mg, "Psi")) {
-      mk.Psi = h5::readMatrix(c, mg, "Psi");
+      mk.Psi = finiteMatrix(c, mg, where, "Psi");
       if (mk.Psi.rows() != 3 || mk.Psi.cols() != sid->nq())
         c.fail(Str() << "/markers/" << name << "/Psi is " << mk.Psi.rows() << "x" << mk.Psi.cols()
                      << ", expected 3x" << sid->nq());

@@ -4,7 +4,9 @@
 // writeSid is atomic: the file is written as "PATH.tmp-PID" and renamed to PATH; on any
 // failure the temporary file is removed and nothing is left behind (ComputeError).
 // readSid throws InputError naming the file for a missing or unreadable file, a wrong
-// `format` or a `format_version` this program does not read.
+// `format` or a `format_version` this program does not read, and for a value that is not
+// finite (NaN, inf) in any real dataset it reads, naming the dataset and the entry:
+// "FILE: dataset '/body/Phi': expected a finite number, found nan at [5, 1]" (0-based).
 // Every HDF5 call's return code is checked; HDF5's own error printing is switched off and
 // the failing call is named in the message instead.
 #pragma once

@@ -1,9 +1,12 @@
 // SID invariants and SID files: the sphere's mass, centre of mass and inertia against the
 // analytical values, the Ms-based elastic invariants against brute-force quadrature, the
-// Buckens conditions, and a write/read round trip with the error cases of readSid.
+// Buckens conditions, and a write/read round trip with the error cases of readSid (values
+// that are not finite among them).
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
+#include <limits>
 
 #include <catch2/catch.hpp>
 
@@ -15,6 +18,7 @@
 #include "preproc/body_preprocessor.h"
 #include "preproc/geometry/geometry_builders.h"
 #include "preproc/reduction/sid_invariants.h"
+#include "tests/support/synthetic_bodies.h"
 #include "tests/support/test_util.h"
 
 using namespace ffriga;
@@ -229,4 +233,48 @@ TEST_CASE("readSid and writeSid report bad files clearly", "[sid]") {
   // A failed write leaves nothing behind.
   FlexibleBodySid empty;
   CHECK_THROWS_AS(writeSid(empty, "no_such_dir/x.sid.h5"), ComputeError);
+}
+
+TEST_CASE("readSid refuses values that are not finite, naming the dataset and the entry", "[sid]") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  FlexibleBodySid good = test::springBody(3, 1e4);
+  Marker mk;
+  mk.name = "m";
+  mk.position = Eigen::Vector3d(0.1, 0.0, 0.0);
+  mk.functions = {0};
+  mk.values = Eigen::VectorXd::Ones(1);
+  mk.Psi = Eigen::MatrixXd::Zero(3, 3);
+  good.markers.push_back(mk);
+  const std::string path = "sid_not_finite_test.sid.h5";
+  writeSid(good, path);
+  CHECK_NOTHROW(readSid(path));
+  using Damage = std::function<void(FlexibleBodySid&)>;
+  const std::vector<std::pair<Damage, std::string>> cases = {
+      {[&](FlexibleBodySid& s) { s.mass = nan; },
+       "dataset '/sid/mass': expected a finite number, found nan"},
+      {[&](FlexibleBodySid& s) { s.mass = -inf; },
+       "dataset '/sid/mass': expected a finite number, found -inf"},
+      {[&](FlexibleBodySid& s) { s.first_moment(2) = inf; },
+       "dataset '/sid/first_moment': expected a finite number, found inf at [2]"},
+      {[&](FlexibleBodySid& s) { s.Ke(1, 0) = nan; },
+       "dataset '/sid/Ke': expected a finite number, found nan at [1, 0]"},
+      {[&](FlexibleBodySid& s) { s.Cr1[1](2, 0) = nan; },
+       "dataset '/sid/Cr1': expected a finite number, found nan at [1, 2, 0]"},
+      {[&](FlexibleBodySid& s) { s.J1[2](0, 1) = inf; },
+       "dataset '/sid/J1': expected a finite number, found inf at [2, 0, 1]"},
+      {[&](FlexibleBodySid& s) { s.Phi(4, 2) = nan; },
+       "dataset '/body/Phi': expected a finite number, found nan at [4, 2]"},
+      {[&](FlexibleBodySid& s) { s.markers[0].Psi(1, 2) = nan; },
+       "dataset '/markers/m/Psi': expected a finite number, found nan at [1, 2]"},
+      {[&](FlexibleBodySid& s) { s.material.density = inf; },
+       "dataset '/material/density': expected a finite number, found inf"},
+  };
+  for (const auto& [damage, message] : cases) {
+    FlexibleBodySid bad = good;
+    damage(bad);
+    writeSid(bad, path);
+    CHECK_THROWS_WITH(readSid(path), path + ": " + message);
+  }
+  std::remove(path.c_str());
 }
