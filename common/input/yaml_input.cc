@@ -231,6 +231,10 @@ const YamlDefault* defaultOf(const YamlDocument& doc, const YAML::Node& node) {
 
 }  // namespace
 
+bool isSchemaDefault(const YamlDocument& doc, const YAML::Node& node) {
+  return defaultOf(doc, node) != nullptr;
+}
+
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message) {
   Str s;

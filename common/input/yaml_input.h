@@ -54,6 +54,12 @@ int yamlLine(const YAML::Node& node);
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message);
 
+// Whether `node` is, or lies inside, a value that JsonSchema::applyDefaults inserted (not one
+// the file or an override gave): checks that forbid a key in some cases must not fire on a
+// default the schema gives for every case (frozen on a rigid body, initial_angle on a joint
+// that is not revolute, damping on a hertz_contact force element).
+bool isSchemaDefault(const YamlDocument& doc, const YAML::Node& node);
+
 // Human-readable rendering of a scalar or the kind of a collection, for "found ..." parts.
 std::string describeNode(const YAML::Node& node);
 

@@ -173,6 +173,11 @@ TEST_CASE("defaults: errors about an inserted node name the default", "[schema][
   CHECK(std::string(inputError(doc, doc.root["a"]["s"], "a.s", "bad").what()) ==
         "f.yaml:2: key 'a.s': bad");
   CHECK(std::string(inputError(doc, doc.root["a"], "a", "bad").what()) == "f.yaml:2: key 'a': bad");
+  CHECK(isSchemaDefault(doc, doc.root["a"]["x"]));
+  CHECK(isSchemaDefault(doc, doc.root["v"][2]));
+  CHECK(!isSchemaDefault(doc, doc.root["a"]["s"]));
+  CHECK(!isSchemaDefault(doc, doc.root["a"]));
+  CHECK(!isSchemaDefault(doc, doc.root["nothing"]));
 }
 
 TEST_CASE("defaults: inside a mapping an override put there, the default is named",
@@ -229,6 +234,10 @@ TEST_CASE("defaults of the real scene schema", "[schema][defaults][scene]") {
   CHECK(b["position"][1].as<double>() == 1.0);  // given
   CHECK(b["rigid"]["centre_of_mass"].size() == 3);
   CHECK(doc.root["contacts"][0]["both_roles"].as<bool>() == true);
+  // Keys the program forbids in some cases get their default everywhere: a rigid body's
+  // frozen (scene.cc: "'frozen' is for SID bodies"); isSchemaDefault tells them apart.
+  CHECK(b["frozen"].as<bool>() == false);
+  CHECK(isSchemaDefault(doc, b["frozen"]));
   CHECK_NOTHROW(schema.validate(doc));
   // Without outputs, nothing is inserted for it (outputs has no default).
   const YamlDocument bare = completed(
