@@ -56,7 +56,7 @@ refused([igaprep, "body.yaml", "-o", "body.yaml"], "-o body.yaml is the body fil
 refused([igaprep, "body.yaml", "-o", "missing/body.sid.h5"], "the folder 'missing' does not exist",
         "igaprep -o into a missing folder")
 refused([igaprep, "body.yaml", "-o", "."], "is a folder", "igaprep -o onto a folder")
-# The size limit: sphere2d_h3 needs ~0.01 GiB by the estimate (preproc/input/size_estimate.h).
+# The size limit: sphere2d_h3 needs ~0.01 GiB by the estimate (preproc/geometry/size_estimate.h).
 refused([igaprep, "body.yaml", "--max-memory", "0.001", "-o", "small.sid.h5"],
         "key 'refinement': the refined body has", "igaprep over --max-memory")
 refused([igaprep, "body.yaml", "--max-memory", "lots", "-o", "small.sid.h5"],

@@ -98,8 +98,8 @@ Loads loadsAt(const LineForce& f, const TestBody* ga, const Eigen::VectorXd& spa
   Loads out;
   out.ha = Eigen::VectorXd::Zero(ga ? ga->model->numVelocities() : 0);
   out.hb = Eigen::VectorXd::Zero(b.model->numVelocities());
-  f.addForces(ga ? spa.data() : nullptr, ga ? sva.data() : nullptr, spb.data(), svb.data(),
-              ga ? out.ha.data() : nullptr, out.hb.data(), &out.state);
+  f.apply(ga ? spa.data() : nullptr, ga ? sva.data() : nullptr, spb.data(), svb.data(),
+          ga ? out.ha.data() : nullptr, out.hb.data(), &out.state);
   return out;
 }
 
