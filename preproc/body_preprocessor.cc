@@ -98,7 +98,7 @@ FlexibleBodySid BodyPreprocessor::run() {
 void BodyPreprocessor::checkInterfaceExists() const {
   bool interfaceMarkers = false;
   for (const MarkerConfig& m : config_.markers) interfaceMarkers = interfaceMarkers || m.interface;
-  if (config_.reduction.method == "craig_bampton" && !config_.contact.present && !interfaceMarkers) {
+  if (config_.reduction.method == ReductionMethod::kCraigBampton && !config_.contact.present && !interfaceMarkers) {
     throw InputError(Str() << config_.source.path << ": the Craig-Bampton reduction (the default "
                            << "of key 'reduction.method') needs an interface: add the key "
                            << "'contact' with face and region, or 'interface: true' on a marker, "
@@ -109,7 +109,7 @@ void BodyPreprocessor::checkInterfaceExists() const {
 // The SID's name, kind and provenance.
 void BodyPreprocessor::identify() {
   sid_.name = config_.name;
-  sid_.model = toString(config_.model);
+  sid_.model = config_.model;
   sid_.input_yaml = config_.source.text;
   sid_.input_path = config_.source.path;
   for (const YamlOverride& o : config_.source.overrides) sid_.input_overrides += o.text + "\n";
@@ -154,9 +154,8 @@ void BodyPreprocessor::assembleSystem() {
 void BodyPreprocessor::selectInterface() {
   const SplineSpace& space = *space_;
   const int s = space.spaceDim();
-  options_.method =
-      config_.reduction.method == "modal" ? ReductionMethod::kModal : ReductionMethod::kCraigBampton;
-  options_.frame = config_.reduction.frame == "tangent" ? FrameKind::kTangent : FrameKind::kBuckens;
+  options_.method = config_.reduction.method;
+  options_.frame = config_.reduction.frame;
   options_.normal_modes = config_.reduction.normal_modes;
   options_.rigid_modes = rigidBodyModes(space, *dofs_, axi_);
   if (config_.contact.present) {
@@ -228,7 +227,7 @@ void BodyPreprocessor::reduce() {
     throw ComputeError(Str() << "reduction: the lowest reduced eigenvalue is " << reduced_.omega2(0)
                              << " (rad/s)^2; a rigid-body direction was not removed");
   }
-  clock_.done("reduction", Str() << config_.reduction.method << ", " << reduced_.normal_modes
+  clock_.done("reduction", Str() << toString(config_.reduction.method) << ", " << reduced_.normal_modes
                                  << " normal + " << reduced_.constraint_modes << " constraint modes, "
                                  << reduced_.rigid_dropped << " rigid directions dropped, nq = " << nq);
 }

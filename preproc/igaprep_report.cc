@@ -84,10 +84,10 @@ void printHierarchy(const BodyConfig& c, const HierarchicalSpace& space) {
 void printSidSummary(const FlexibleBodySid& s, const std::string& path) {
   std::printf("SID file %s (%s)\n", path.c_str(), s.created_by.c_str());
   std::printf("  body                 %s (%s, %dD data), from %s\n", s.name.c_str(),
-              s.model.c_str(), s.space_dim, s.input_path.c_str());
+              toString(s.model), s.space_dim, s.input_path.c_str());
   std::printf("  ndof                 %d\n", s.ndof);
   std::printf("  elements / levels    %d / %d\n", s.n_elements, s.nlvl);
-  std::printf("  reduction            %s, frame %s\n", s.reduction.c_str(), s.frame.c_str());
+  std::printf("  reduction            %s, frame %s\n", toString(s.reduction), toString(s.frame));
   std::printf("  nq                   %d = %d normal + %d constraint - %d rigid\n", s.nq(),
               s.normal_modes, s.constraint_modes, s.rigid_modes_dropped);
   std::printf("  interface points     %d\n", s.n_interface_control_points);
@@ -136,7 +136,7 @@ void printPreprocessSummary(const BodyConfig& config, const FlexibleBodySid& sid
                             const PreprocessSummary& summary, const std::string& output,
                             double write_s, double total_s) {
   std::printf("igaprep %s: %s -> %s\n", kVersion, config.source.path.c_str(), output.c_str());
-  std::printf("  %-28s %s, %s frame\n", "model", sid.model.c_str(), sid.frame.c_str());
+  std::printf("  %-28s %s, %s frame\n", "model", toString(sid.model), toString(sid.frame));
   std::printf("  %-28s %d (%d control points, %d tied, %d fixed on the axis)\n", "ndof",
               summary.ndof, summary.num_control_points, summary.tied_points, summary.fixed_dofs);
   std::printf("  %-28s %d (%d DOFs)\n", "interface control points",

@@ -12,6 +12,7 @@ as the programs do:
 
     study: error: penalty.yaml:12: key 'parameters[0].values': expected a list, found 3e17
 """
+import copy
 import hashlib
 import itertools
 import json
@@ -144,6 +145,36 @@ def _schema():
     return schema
 
 
+def _resolve(schema, root):
+    """A schema with its local $ref (#/$defs/NAME) followed."""
+    while isinstance(schema, dict) and "$ref" in schema:
+        ref = schema["$ref"]
+        node = root
+        for part in ref.lstrip("#/").split("/"):
+            node = node[part]
+        schema = {**{k: v for k, v in schema.items() if k != "$ref"}, **node}
+    return schema
+
+
+def fill_defaults(data, schema, root=None):
+    """Inserts the schema's `default`s into a validated document, recursively (the same rule
+    as common/input/json_schema.cc's applyDefaults: absent properties with a default, then
+    the properties and array items in turn), so that no default is typed twice."""
+    root = schema if root is None else root
+    schema = _resolve(schema, root)
+    if isinstance(data, dict):
+        for name, sub in schema.get("properties", {}).items():
+            sub_resolved = _resolve(sub, root)
+            if name not in data and "default" in sub_resolved:
+                data[name] = copy.deepcopy(sub_resolved["default"])
+            if name in data:
+                fill_defaults(data[name], sub, root)
+    elif isinstance(data, list) and "items" in schema:
+        for item in data:
+            fill_defaults(item, schema["items"], root)
+    return data
+
+
 def _validate(doc, schema):
     validator = jsonschema.Draft202012Validator(schema)
     errors = sorted(validator.iter_errors(doc.data),
@@ -170,7 +201,7 @@ class Parameter:
 
 def _range_values(r, doc, path):
     n, a, b = r["num"], float(r["start"]), float(r["stop"])
-    if r.get("spacing", "linear") == "log":
+    if r["spacing"] == "log":
         if a <= 0 or b <= 0:
             raise doc.error(path, f"log spacing needs start and stop > 0, found {a:g} and {b:g}")
         la, lb = math.log10(a), math.log10(b)
@@ -180,7 +211,7 @@ def _range_values(r, doc, path):
         vals[0], vals[-1] = a, (b if n > 1 else a)
     else:
         vals = [a + (b - a) * i / (n - 1) if n > 1 else a for i in range(n)]
-    if r.get("integer", False):
+    if r["integer"]:
         vals = [int(round(v)) for v in vals]
     return vals
 
@@ -222,17 +253,16 @@ class Study:
         self._doc = doc = _Document(path)
         schema = _schema()
         _validate(doc, schema)
-        d = doc.data
+        d = fill_defaults(doc.data, schema)
         self.name = d["study"]
         self.description = d.get("description", "")
         self.scene = d["scene"]
-        self.bodies = d.get("bodies", {})
+        self.bodies = d["bodies"]
         self.parameters = [Parameter(p, i, doc) for i, p in enumerate(d["parameters"])]
-        self.combine = d.get("combine", "product")
-        schema_props = schema["properties"]
-        self.collect = d.get("collect", schema_props["collect"]["default"])
-        self.plot = d.get("plot", schema_props["plot"]["default"])
-        self.resources = d.get("resources", {})
+        self.combine = d["combine"]
+        self.collect = d["collect"]
+        self.plot = d["plot"]
+        self.resources = d["resources"]
         self._check()
 
     def error(self, path, message):

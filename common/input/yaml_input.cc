@@ -291,6 +291,14 @@ int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& k
   return v;
 }
 
+bool getBool(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  bool v = false;
+  if (!node.IsScalar() || !YAML::convert<bool>::decode(node, v)) {
+    throw inputError(doc, node, key, Str() << "expected true or false, found " << describeNode(node));
+  }
+  return v;
+}
+
 std::string getString(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
   if (!node.IsScalar()) {
     throw inputError(doc, node, key, Str() << "expected a string, found " << describeNode(node));

@@ -59,6 +59,10 @@ InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std
 // default the schema gives for every case (frozen on a rigid body, initial_angle on a joint
 // that is not revolute, damping on a hertz_contact force element).
 bool isSchemaDefault(const YamlDocument& doc, const YAML::Node& node);
+// Whether the file or an override gave `node` (it exists and is no schema default).
+inline bool isGiven(const YamlDocument& doc, const YAML::Node& node) {
+  return node && !isSchemaDefault(doc, node);
+}
 
 // Human-readable rendering of a scalar or the kind of a collection, for "found ..." parts.
 std::string describeNode(const YAML::Node& node);
@@ -67,6 +71,20 @@ std::string describeNode(const YAML::Node& node);
 // schema has checked); a failed conversion still reports file, line and key.
 double getDouble(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
 int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
+bool getBool(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
 std::string getString(const YamlDocument& doc, const YAML::Node& node, const std::string& key);
+
+// The enum value a word at `node` spells, through the enum's one spelling table
+// (common/base/spelling.h), reached by an overload parseKind(std::string_view, E*) beside the
+// enum. The schema's enum has checked the word: one the table lacks means the two are out
+// of step, reported as an input error all the same.
+template <class E>
+E getKind(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
+  E value{};
+  const std::string text = getString(doc, node, key);
+  if (!parseKind(text, &value))
+    throw inputError(doc, node, key, "'" + text + "' is no value this program knows");
+  return value;
+}
 
 }  // namespace ffriga

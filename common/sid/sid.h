@@ -25,6 +25,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/sid/body_kinds.h"
 #include "common/splines/contact_surface.h"
 
 namespace ffriga {
@@ -92,18 +93,18 @@ struct StressLine {
 struct FlexibleBodySid {
   // Identity and provenance.
   std::string name;
-  std::string model;  // "axisymmetric" or "solid"
+  ModelKind model = ModelKind::kSolid;
   int space_dim = 3;  // 2 for axisymmetric, 3 for solid
   int ndof = 0;       // displacement DOFs of the full (unreduced) model
   int nlvl = 1;       // hierarchical levels
   int n_elements = 0;
   int n_interface_control_points = 0;
-  std::string frame;            // "buckens" or "tangent"
+  FrameKind frame = FrameKind::kBuckens;
   std::string input_yaml;       // the body file's text
   std::string input_path;       // the body file as given to igaprep
   std::string input_overrides;  // igaprep's --set KEY=VALUE, one per line ("" for none)
   std::string created_by;       // program and version, e.g. "igaprep 0.1.0"
-  std::string reduction;        // "craig_bampton" or "modal"
+  ReductionMethod reduction = ReductionMethod::kCraigBampton;
   int normal_modes = 0;         // fixed-interface (CB) or free-free (modal) modes in the basis
   int constraint_modes = 0;     // CB constraint modes (interface DOFs)
   int rigid_modes_dropped = 0;  // zero-frequency directions removed (1 axisymmetric, 6 3D)

@@ -225,7 +225,7 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, file, "format_version", kSidFormatVersion);
   h5::writeAttribute(c, file, "created_by", sid.created_by);
   h5::writeAttribute(c, file, "name", sid.name);
-  h5::writeAttribute(c, file, "model", sid.model);
+  h5::writeAttribute(c, file, "model", std::string(toString(sid.model)));
   h5::writeAttribute(c, file, "space_dim", sid.space_dim);
   h5::writeAttribute(c, file, "ndof", sid.ndof);
   h5::writeAttribute(c, file, "nq", sid.nq());
@@ -233,8 +233,8 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, file, "n_elements", sid.n_elements);
   h5::writeAttribute(c, file, "n_interface_control_points", sid.n_interface_control_points);
   h5::writeAttribute(c, file, "preprocessing_time_s", sid.preprocessing_time_s);
-  h5::writeAttribute(c, file, "frame", sid.frame);
-  h5::writeAttribute(c, file, "reduction", sid.reduction);
+  h5::writeAttribute(c, file, "frame", std::string(toString(sid.frame)));
+  h5::writeAttribute(c, file, "reduction", std::string(toString(sid.reduction)));
   h5::writeAttribute(c, file, "normal_modes", sid.normal_modes);
   h5::writeAttribute(c, file, "constraint_modes", sid.constraint_modes);
   h5::writeAttribute(c, file, "rigid_modes_dropped", sid.rigid_modes_dropped);
@@ -298,6 +298,14 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   }
 }
 
+// A root attribute naming one of the body kinds (common/sid/body_kinds.h).
+template <class Kind>
+void readKind(const Context& c, hid_t file, const char* name, Kind* kind) {
+  const std::string text = h5::readStringAttribute(c, file, name);
+  if (!parseKind(text, kind)) c.fail(Str() << "attribute '" << name << "' is '" << text << "', no "
+                                           << name << " this program knows; rerun igaprep");
+}
+
 // Root attributes: the format and its version first, then the body's identity and counts.
 void readHeader(const Context& c, hid_t file, FlexibleBodySid* sid) {
   if (!h5::hasAttribute(file, "format")) c.fail("not a SID file (no root attribute 'format')");
@@ -313,15 +321,15 @@ void readHeader(const Context& c, hid_t file, FlexibleBodySid* sid) {
   }
   sid->created_by = h5::readStringAttribute(c, file, "created_by");
   sid->name = h5::readStringAttribute(c, file, "name");
-  sid->model = h5::readStringAttribute(c, file, "model");
+  readKind(c, file, "model", &sid->model);
   sid->space_dim = h5::readIntAttribute(c, file, "space_dim");
   sid->ndof = h5::readIntAttribute(c, file, "ndof");
   sid->nlvl = h5::readIntAttribute(c, file, "nlvl");
   sid->n_elements = h5::readIntAttribute(c, file, "n_elements");
   sid->n_interface_control_points = h5::readIntAttribute(c, file, "n_interface_control_points");
   sid->preprocessing_time_s = h5::readDoubleAttribute(c, file, "preprocessing_time_s");
-  sid->frame = h5::readStringAttribute(c, file, "frame");
-  sid->reduction = h5::readStringAttribute(c, file, "reduction");
+  readKind(c, file, "frame", &sid->frame);
+  readKind(c, file, "reduction", &sid->reduction);
   sid->normal_modes = h5::readIntAttribute(c, file, "normal_modes");
   sid->constraint_modes = h5::readIntAttribute(c, file, "constraint_modes");
   sid->rigid_modes_dropped = h5::readIntAttribute(c, file, "rigid_modes_dropped");

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "common/base/spelling.h"
 #include "common/input/json_schema.h"
 #include "common/input/schemas.h"
 #include "common/input/yaml_overrides.h"
@@ -10,23 +11,21 @@
 
 namespace ffriga {
 
-const char* toString(ModelKind model) {
-  switch (model) {
-    case ModelKind::kAxisymmetric:
-      return "axisymmetric";
-    case ModelKind::kSolid:
-      return "solid";
-  }
-  return "?";
-}
-
 namespace {
 
 // YAML spelling of GeometryKind (the schema restricts geometry.type to these).
-const std::pair<const char*, GeometryKind> kGeometryKinds[] = {{"half_disk", GeometryKind::kHalfDisk},
-                                                               {"sphere", GeometryKind::kSphere},
-                                                               {"rod", GeometryKind::kRod},
-                                                               {"nurbs", GeometryKind::kNurbs}};
+const Spelling<GeometryKind> kGeometryKinds[] = {{"half_disk", GeometryKind::kHalfDisk},
+                                                 {"sphere", GeometryKind::kSphere},
+                                                 {"rod", GeometryKind::kRod},
+                                                 {"nurbs", GeometryKind::kNurbs}};
+
+}  // namespace
+
+bool parseKind(std::string_view text, GeometryKind* kind) {
+  return parseSpelling(kGeometryKinds, text, kind);
+}
+
+namespace {
 
 NurbsPatch explicitNurbs(const YamlDocument& doc, const YAML::Node& g) {
   const YAML::Node degrees = g["degrees"];
@@ -108,10 +107,9 @@ void parseInsert(const YamlDocument& doc, const YAML::Node& node, int d, BodyCon
 void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasContact,
                     const std::vector<MarkerConfig>& markers, ReductionConfig* r) {
   if (node) {
-    if (node["method"]) r->method = getString(doc, node["method"], "reduction.method");
-    if (node["normal_modes"])
-      r->normal_modes = getInt(doc, node["normal_modes"], "reduction.normal_modes");
-    if (node["frame"]) r->frame = getString(doc, node["frame"], "reduction.frame");
+    r->method = getKind<ReductionMethod>(doc, node["method"], "reduction.method");
+    r->normal_modes = getInt(doc, node["normal_modes"], "reduction.normal_modes");
+    r->frame = getKind<FrameKind>(doc, node["frame"], "reduction.frame");
     if (node["frame_marker"])
       r->frame_marker = getString(doc, node["frame_marker"], "reduction.frame_marker");
     const YAML::Node damping = node["damping"];
@@ -140,16 +138,16 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
   // repeats this check (preprocessBody).
   bool interfaceMarker = false;
   for (const auto& m : markers) interfaceMarker = interfaceMarker || m.interface;
-  if (node && r->method == "craig_bampton" && !hasContact && !interfaceMarker) {
+  if (node && r->method == ReductionMethod::kCraigBampton && !hasContact && !interfaceMarker) {
     throw inputError(doc, where, "reduction.method",
                      "craig_bampton needs an interface: a contact region (key 'contact') or a "
                      "marker with 'interface: true'");
   }
-  if (r->method == "modal" && r->normal_modes < 1) {
+  if (r->method == ReductionMethod::kModal && r->normal_modes < 1) {
     throw inputError(doc, node["normal_modes"], "reduction.normal_modes",
                      "the modal method needs at least one normal mode, found 0");
   }
-  if (r->frame == "tangent") {
+  if (r->frame == FrameKind::kTangent) {
     bool found = false;
     for (const auto& m : markers) found = found || m.name == r->frame_marker;
     if (!found) {
@@ -195,7 +193,7 @@ void readHierarchy(const YamlDocument& doc, const YAML::Node& h, int d, BodyConf
 void readContact(const YamlDocument& doc, const YAML::Node& node, int d, ContactConfig* c) {
   if (!node) return;
   c->present = true;
-  if (node["name"]) c->name = getString(doc, node["name"], "contact.name");
+  c->name = getString(doc, node["name"], "contact.name");
   const std::string face = getString(doc, node["face"], "contact.face");
   parseFaceName(face, &c->direction, &c->upper);  // the schema's enum has checked the name
   if (c->direction >= d) {
@@ -220,7 +218,7 @@ MarkerConfig readMarker(const YamlDocument& doc, const YAML::Node& node, const s
                         int d) {
   MarkerConfig m;
   m.name = getString(doc, node["name"], key + ".name");
-  if (node["interface"]) m.interface = node["interface"].as<bool>();
+  m.interface = getBool(doc, node["interface"], key + ".interface");
   if (bool(node["parameters"]) == bool(node["face"]))
     throw inputError(doc, node, key,
                      "expected either 'parameters' (a point) or 'face' (a boundary face)");
@@ -258,9 +256,7 @@ void readMarkers(const YamlDocument& doc, const YAML::Node& node, int d,
 
 // Reads `geometry`: the kind with its sizes, or the explicit patch.
 void readGeometry(const YamlDocument& doc, const YAML::Node& g, GeometryConfig& geometry) {
-  const std::string type = getString(doc, g["type"], "geometry.type");
-  for (const auto& [spelling, kind] : kGeometryKinds)
-    if (type == spelling) geometry.kind = kind;
+  geometry.kind = getKind<GeometryKind>(doc, g["type"], "geometry.type");
   if (geometry.kind != GeometryKind::kNurbs)
     geometry.radius = getDouble(doc, g["radius"], "geometry.radius");
   if (geometry.kind == GeometryKind::kRod)
@@ -313,11 +309,11 @@ double ReductionConfig::dampingRatio(double f_hz, double f1_hz) const {
 BodyConfig readBodyConfig(YamlDocument doc) {
   static const JsonSchema schema(kBodySchema, "body.schema.json");
   schema.validate(doc);
+  schema.applyDefaults(doc);  // the keys below with a schema default are always present
   BodyConfig c;
   const YAML::Node& root = doc.root;
   c.name = getString(doc, root["name"], "name");
-  c.model = getString(doc, root["model"], "model") == "axisymmetric" ? ModelKind::kAxisymmetric
-                                                                     : ModelKind::kSolid;
+  c.model = getKind<ModelKind>(doc, root["model"], "model");
   const YAML::Node m = root["material"];
   c.material.youngs_modulus = getDouble(doc, m["youngs_modulus"], "material.youngs_modulus");
   c.material.poisson_ratio = getDouble(doc, m["poisson_ratio"], "material.poisson_ratio");
@@ -353,11 +349,7 @@ BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes,
   return parseBodyConfig(std::move(doc), memory_limit_bytes);
 }
 
-const char* toString(GeometryKind geometry) {
-  for (const auto& [spelling, kind] : kGeometryKinds)
-    if (kind == geometry) return spelling;
-  return "?";
-}
+const char* toString(GeometryKind geometry) { return spell(kGeometryKinds, geometry); }
 
 NurbsPatch refinedPatch(const BodyConfig& config) {
   return ffriga::refinedPatch(exactPatch(config.geometry), config.refinement);

@@ -15,9 +15,11 @@
 #include <array>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/input/yaml_input.h"
+#include "common/sid/body_kinds.h"
 #include "common/splines/hierarchical_space.h"
 #include "common/splines/nurbs_patch.h"
 #include "preproc/geometry/body_geometry.h"
@@ -25,11 +27,9 @@
 
 namespace ffriga {
 
-enum class ModelKind { kAxisymmetric, kSolid };
-
-// One table from enum to YAML spelling.
-const char* toString(ModelKind model);
+// The YAML spelling of geometry.type (the model's and reduction's: common/sid/body_kinds.h).
 const char* toString(GeometryKind geometry);
+bool parseKind(std::string_view text, GeometryKind* kind);
 
 struct Material {
   double youngs_modulus = 0.0;  // E, Pa
@@ -66,10 +66,12 @@ struct DampingBand {
 };
 
 struct ReductionConfig {
-  std::string method = "craig_bampton";  // craig_bampton | modal
+  // Defaults as the schema's (tests/preproc/input/body_defaults_test.cc); they apply to a
+  // body file without a `reduction` block.
+  ReductionMethod method = ReductionMethod::kCraigBampton;  // craig_bampton | modal
   int normal_modes = 10;
-  std::string frame = "buckens";  // buckens | tangent
-  std::string frame_marker;       // tangent frame only
+  FrameKind frame = FrameKind::kBuckens;  // buckens | tangent
+  std::string frame_marker;               // tangent frame only
   std::vector<DampingBand> damping;
   // Damping ratio of a mode of frequency f_hz on a body whose lowest elastic frequency is
   // f1_hz (the last matching band wins; 0 if none).

@@ -60,7 +60,7 @@ VisualisationConfig readVisualisation(const YamlDocument& doc, const YAML::Node&
     }
     line.from = parsePoint(doc, lines[i]["from"], key + ".from", d);
     line.to = parsePoint(doc, lines[i]["to"], key + ".to", d);
-    if (lines[i]["points"]) line.points = getInt(doc, lines[i]["points"], key + ".points");
+    line.points = getInt(doc, lines[i]["points"], key + ".points");
     v.stress_lines.push_back(std::move(line));
   }
   return v;

@@ -26,17 +26,15 @@
 
 #include <Eigen/Dense>
 
+#include "common/sid/body_kinds.h"
 #include "preproc/assembly/elasticity_assembly.h"
 
 namespace ffriga {
 
-enum class ReductionMethod { kCraigBampton, kModal };
-enum class FrameKind { kBuckens, kTangent };
-
 struct ReductionOptions {
   ReductionMethod method = ReductionMethod::kCraigBampton;
   FrameKind frame = FrameKind::kBuckens;
-  int normal_modes = 10;             // fixed-interface (CB) or free-free (modal) modes
+  int normal_modes = 0;              // fixed-interface (CB) or free-free (modal) modes
   std::vector<bool> interface;       // per DOF: on the Craig-Bampton interface
   Eigen::MatrixXd rigid_modes;       // ndof x nr, the rigid-body fields
   Eigen::MatrixXd frame_conditions;  // nr x ndof, C for the tangent frame

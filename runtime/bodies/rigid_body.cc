@@ -44,10 +44,10 @@ FlexibleBodySid rigidBodySid(const std::string& name, const RigidBodyProperties&
                            << "mass distribution");
   FlexibleBodySid s;
   s.name = name;
-  s.model = "rigid";
+  s.model = ModelKind::kRigid;
   s.space_dim = 3;
-  s.frame = "centre_of_mass_given";
-  s.reduction = "rigid";
+  s.frame = FrameKind::kCentreOfMassGiven;
+  s.reduction = ReductionMethod::kRigid;
   s.created_by = "scene";
   s.mass = p.mass;
   const Eigen::Vector3d& c = p.centre_of_mass;
@@ -62,7 +62,7 @@ FlexibleBodySid rigidBodySid(const std::string& name, const RigidBodyProperties&
 FlexibleBodySid frozenSid(const FlexibleBodySid& sid) {
   FlexibleBodySid s = sid;
   clearElasticPart(s, static_cast<int>(sid.control_points.rows()));
-  s.reduction = "frozen";
+  s.reduction = ReductionMethod::kFrozen;
   return s;
 }
 

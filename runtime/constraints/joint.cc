@@ -1,6 +1,7 @@
 #include "runtime/constraints/joint.h"
 
 #include "common/base/error.h"
+#include "common/base/spelling.h"
 #include "runtime/bodies/marker_kinematics.h"
 #include "runtime/bodies/rotation.h"
 
@@ -30,18 +31,19 @@ void dotRow(const Factor& X, const Factor& Y, int row, JointRows& r) {
 
 }  // namespace
 
-const char* jointTypeName(JointType t) {
-  switch (t) {
-    case JointType::kSpherical:
-      return "spherical";
-    case JointType::kRevolute:
-      return "revolute";
-    case JointType::kFixed:
-      return "fixed";
-    case JointType::kPrismatic:
-      return "prismatic";
-  }
-  return "?";
+namespace {
+
+// The scene's spelling of JointType (schemas/scene.schema.json, joints[].type).
+const Spelling<JointType> kJointTypes[] = {{"spherical", JointType::kSpherical},
+                                           {"revolute", JointType::kRevolute},
+                                           {"fixed", JointType::kFixed},
+                                           {"prismatic", JointType::kPrismatic}};
+
+}  // namespace
+
+const char* jointTypeName(JointType t) { return spell(kJointTypes, t); }
+bool parseKind(std::string_view text, JointType* type) {
+  return parseSpelling(kJointTypes, text, type);
 }
 
 Joint::Joint(std::string name, JointType type, JointEnd a, JointEnd b)

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 #include <Eigen/Dense>
 
@@ -77,5 +78,6 @@ class Joint {
 };
 
 const char* jointTypeName(JointType t);
+bool parseKind(std::string_view text, JointType* type);  // the scene's word for a type
 
 }  // namespace ffriga

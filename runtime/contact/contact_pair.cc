@@ -19,7 +19,8 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
     : ForceElement(std::move(name), a, b), options_(options) {
   if (A.spaceDim() != B.spaceDim()) {
     throw InputError(Str() << "contact '" << this->name() << "': bodies '" << A.name() << "' ("
-                           << A.sid().model << ") and '" << B.name() << "' (" << B.sid().model
+                           << toString(A.sid().model) << ") and '" << B.name() << "' ("
+                           << toString(B.sid().model)
                            << ") are of different kinds");
   }
   FFRIGA_CHECK(options_.penalty > 0.0, "penalty factor " << options_.penalty);

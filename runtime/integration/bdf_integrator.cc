@@ -14,6 +14,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 
 #include "common/base/error.h"
+#include "common/base/spelling.h"
 #include "runtime/integration/eigen_dense_solver.h"
 #include "runtime/integration/structured_solver.h"
 
@@ -256,6 +257,15 @@ IntegratorStats BdfIntegrator::stats() const {
   m.check(CVodeGetLastOrder(m.cvode, &s.last_order), "CVodeGetLastOrder");
   m.check(CVodeGetLastStep(m.cvode, &s.last_step), "CVodeGetLastStep");
   return s;
+}
+
+namespace {
+const Spelling<LinearSolverKind> kLinearSolvers[] = {{"structured", LinearSolverKind::kAuto},
+                                                     {"dense", LinearSolverKind::kEigenDense}};
+}  // namespace
+
+bool parseKind(std::string_view text, LinearSolverKind* kind) {
+  return parseSpelling(kLinearSolvers, text, kind);
 }
 
 }  // namespace ffriga

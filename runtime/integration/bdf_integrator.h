@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Dense>
 
@@ -24,6 +25,8 @@ namespace ffriga {
 // provides a structured Jacobian, else Eigen's blocked dense LU; kEigenDense and
 // kSundialsDense (SUNDIALS' reference LU) force a dense n x n matrix.
 enum class LinearSolverKind { kAuto, kEigenDense, kSundialsDense };
+// The scene's words (integrator.linear_solver): "structured" (kAuto), "dense" (kEigenDense).
+bool parseKind(std::string_view text, LinearSolverKind* kind);
 
 struct IntegratorOptions {
   LinearSolverKind linear_solver = LinearSolverKind::kAuto;

@@ -18,7 +18,7 @@ void ResultRows::createBodies(const OutputLayout& layout) {
   h5::Handle bodies = file_.group(file_.id(), "bodies");
   for (const BodyLayout& body : layout.bodies) {
     h5::Handle g = file_.group(bodies.id(), body.name);
-    h5::writeAttribute(c, g.id(), "model", body.sid->model);
+    h5::writeAttribute(c, g.id(), "model", std::string(toString(body.sid->model)));
     h5::writeAttribute(c, g.id(), "sid_name", body.sid->name);
     // Quasi-static coordinates (runtime/bodies/quasi_static_modes.h): their count and
     // cutoff (Hz, 0 if none); their qdot columns are zero.

@@ -95,7 +95,7 @@ FrameWriter::FrameWriter(ResultFile& file, const OutputLayout& layout,
     b->index = i;
     b->name = body.name;
     b->mesh = &body.sid->mesh;
-    b->axisymmetric = body.sid->model == "axisymmetric";
+    b->axisymmetric = body.sid->model == ModelKind::kAxisymmetric;
     b->Phi = b->mesh->samples.Phi.cast<float>();
     b->stress = b->mesh->samples.stress.cast<float>();
     const int np = static_cast<int>(b->meshPoints());

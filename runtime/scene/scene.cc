@@ -87,7 +87,8 @@ class SceneBuilder {
 // 1.-2. The schema, the names, the number of output rows.
 void SceneBuilder::validate() {
   static const JsonSchema schema(kSceneSchema, "scene.schema.json");
-  schema.validate(doc());
+  schema.validate(scene_.doc);
+  schema.applyDefaults(scene_.doc);  // every default below is the schema's
   const YAML::Node root = doc().root;
   scene_.name =
       root["name"] ? getString(doc(), root["name"], "name") : fs::path(doc().path).stem().string();
@@ -99,9 +100,8 @@ void SceneBuilder::validate() {
 void SceneBuilder::loadBodies() {
   sids_ = loadBodyData(doc(), sid_paths_, load_sid_, scene_.sid_files);
   const YAML::Node root = doc().root;
-  const Eigen::Vector3d gravity =
-      vectorOr(doc(), root["gravity"], "gravity", Eigen::Vector3d::Zero());
-  axisymmetric_ = sids_[0]->model == "axisymmetric";
+  const Eigen::Vector3d gravity = vector3(doc(), root["gravity"], "gravity");
+  axisymmetric_ = sids_[0]->model == ModelKind::kAxisymmetric;
   scene_.system = std::make_unique<MultibodySystem>();
   scene_.system->setGravity(gravity);
   if (axisymmetric_ && (gravity(0) != 0.0 || gravity(2) != 0.0))
@@ -117,12 +117,12 @@ void SceneBuilder::addBodies() {
     const std::string k = Str() << "bodies[" << b << "]";
     const std::string name = getString(doc(), B["name"], k + ".name");
     const FlexibleBodySid& sid = *sids_[b];
-    if ((sid.model == "axisymmetric") != axisymmetric_) {
+    if ((sid.model == ModelKind::kAxisymmetric) != axisymmetric_) {
       const YAML::Node at = B["sid"] ? B["sid"] : B["rigid"];
       throw inputError(doc(), at, k + (B["sid"] ? ".sid" : ".rigid"),
                        Str() << "axisymmetric bodies cannot share a scene with other kinds; '"
-                             << name << "' is '" << sid.model << "', the first body '"
-                             << sids_[0]->model << "'");
+                             << name << "' is '" << toString(sid.model) << "', the first body '"
+                             << toString(sids_[0]->model) << "'");
     }
     const InitialPose pose = readInitialPose(doc(), static_cast<int>(b), sid);
     std::unique_ptr<BodyModel> model =
@@ -169,7 +169,7 @@ void SceneBuilder::addContacts() {
     if (!(o.penalty > 0.0))  // also checked by the schema; kept for direct callers
       throw inputError(doc(), C["penalty_factor"], k + ".penalty_factor",
                        Str() << "expected a number > 0 N/m^3, found " << o.penalty);
-    if (C["both_roles"]) o.both_roles = C["both_roles"].as<bool>();
+    o.both_roles = getBool(doc(), C["both_roles"], k + ".both_roles");
     o.search_margin = doubleOr(doc(), C["search_margin"], k + ".search_margin", -1.0);
     o.penetration_tolerance =
         doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
@@ -186,24 +186,18 @@ void SceneBuilder::readIntegrator() {
   SimulationSettings& s = scene_.settings;
   s.end_time = getDouble(doc(), I["end_time"], "integrator.end_time");
   s.output_interval = getDouble(doc(), I["output_interval"], "integrator.output_interval");
-  s.integrator.rtol = doubleOr(doc(), I["rtol"], "integrator.rtol", 1e-6);
-  atol_.position = doubleOr(doc(), I["atol_position"], "integrator.atol_position", 1e-12);
-  atol_.velocity = doubleOr(doc(), I["atol_velocity"], "integrator.atol_velocity", 1e-8);
-  atol_.rotation = doubleOr(doc(), I["atol_rotation"], "integrator.atol_rotation", 1e-10);
+  s.integrator.rtol = getDouble(doc(), I["rtol"], "integrator.rtol");
+  atol_.position = getDouble(doc(), I["atol_position"], "integrator.atol_position");
+  atol_.velocity = getDouble(doc(), I["atol_velocity"], "integrator.atol_velocity");
+  atol_.rotation = getDouble(doc(), I["atol_rotation"], "integrator.atol_rotation");
   atol_.angular_velocity =
-      doubleOr(doc(), I["atol_angular_velocity"], "integrator.atol_angular_velocity", 1e-6);
+      getDouble(doc(), I["atol_angular_velocity"], "integrator.atol_angular_velocity");
   s.integrator.max_step = doubleOr(doc(), I["max_step"], "integrator.max_step", 0.0);
   s.integrator.initial_step = doubleOr(doc(), I["initial_step"], "integrator.initial_step", 0.0);
-  s.integrator.max_order = I["max_order"] ? getInt(doc(), I["max_order"], "integrator.max_order")
-                                          : IntegratorOptions().max_order;
+  s.integrator.max_order = getInt(doc(), I["max_order"], "integrator.max_order");
   // YAML spelling of LinearSolverKind (the schema restricts the values to these).
-  static const std::pair<const char*, LinearSolverKind> kSolvers[] = {
-      {"structured", LinearSolverKind::kAuto}, {"dense", LinearSolverKind::kEigenDense}};
-  if (I["linear_solver"]) {
-    const std::string v = getString(doc(), I["linear_solver"], "integrator.linear_solver");
-    for (const auto& [name, kind] : kSolvers)
-      if (v == name) s.integrator.linear_solver = kind;
-  }
+  s.integrator.linear_solver =
+      getKind<LinearSolverKind>(doc(), I["linear_solver"], "integrator.linear_solver");
 }
 
 // 6. Joints, force elements, sensors; initial joint angles.
@@ -238,13 +232,11 @@ void SceneBuilder::readVisualisation() {
   VisualisationSettings& v = scene_.visualisation;
   v.enabled = true;
   v.interval = getDouble(doc(), V["interval"], "outputs.visualisation.interval");
-  v.magnification = doubleOr(doc(), V["magnification"], "outputs.visualisation.magnification", 1.0);
-  if (V["revolve"]) {
-    v.revolve = getInt(doc(), V["revolve"], "outputs.visualisation.revolve");
-    if (v.revolve == 1 || v.revolve == 2)
-      throw inputError(doc(), V["revolve"], "outputs.visualisation.revolve",
-                       "expected 0 (the meridian section) or at least 3 segments");
-  }
+  v.magnification = getDouble(doc(), V["magnification"], "outputs.visualisation.magnification");
+  v.revolve = getInt(doc(), V["revolve"], "outputs.visualisation.revolve");
+  if (v.revolve == 1 || v.revolve == 2)
+    throw inputError(doc(), V["revolve"], "outputs.visualisation.revolve",
+                     "expected 0 (the meridian section) or at least 3 segments");
   const MultibodySystem& sys = *scene_.system;
   for (int b = 0; b < sys.numBodies(); ++b) {
     if (scene_.sid_files[b].empty() || !sys.body(b).sid().mesh.empty()) continue;
@@ -257,20 +249,18 @@ void SceneBuilder::readVisualisation() {
 
 // The static preload (runtime/system/static_preload.h) when the scene asks for it.
 void SceneBuilder::preload() {
-  const YAML::Node P = doc().root["static_preload"];
-  if (!P || !P.as<bool>()) return;
+  if (!getBool(doc(), doc().root["static_preload"], "static_preload")) return;
   scene_.static_preload = true;
   scene_.preload = staticPreload(*scene_.system, scene_.y0);
 }
 
 // outputs: when the result file is flushed, progress lines, contact rows.
 void SceneBuilder::readOutputs() {
-  const YAML::Node O = doc().root["outputs"];
-  if (!O) return;
-  if (O["flush_rows"]) scene_.flush.rows = getInt(doc(), O["flush_rows"], "outputs.flush_rows");
-  scene_.flush.interval = doubleOr(doc(), O["flush_interval"], "outputs.flush_interval", 2.0);
+  const YAML::Node O = doc().root["outputs"];  // the schema's default {} when absent
+  scene_.flush.rows = getInt(doc(), O["flush_rows"], "outputs.flush_rows");
+  scene_.flush.interval = getDouble(doc(), O["flush_interval"], "outputs.flush_interval");
   SimulationSettings& s = scene_.settings;
-  s.progress_interval = doubleOr(doc(), O["progress_interval"], "outputs.progress_interval", 1.0);
+  s.progress_interval = getDouble(doc(), O["progress_interval"], "outputs.progress_interval");
   s.contact_output_interval =
       doubleOr(doc(), O["contact_output_interval"], "outputs.contact_output_interval", 0.0);
 }

@@ -60,7 +60,7 @@ std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
       throw inputError(doc, bodies[b], Str() << "bodies[" << b << "]",
                        "expected either 'sid' (a body from igaprep) or 'rigid' (mass and inertia)");
     for (const char* key : {"frozen", "q", "qdot", "damping", "surface", "quasi_static"})
-      if (rigid && bodies[b][key])
+      if (rigid && isGiven(doc, bodies[b][key]))
         throw inputError(doc, bodies[b][key], Str() << "bodies[" << b << "]." << key,
                          Str() << "'" << key << "' is for SID bodies, not rigid ones");
   }
@@ -106,8 +106,7 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
       const YAML::Node R = B["rigid"];
       RigidBodyProperties p;
       p.mass = getDouble(doc, R["mass"], k + ".rigid.mass");
-      p.centre_of_mass =
-          vectorOr(doc, R["centre_of_mass"], k + ".rigid.centre_of_mass", Eigen::Vector3d::Zero());
+      p.centre_of_mass = vector3(doc, R["centre_of_mass"], k + ".rigid.centre_of_mass");
       p.inertia = matrix3(doc, R["inertia"], k + ".rigid.inertia");
       try {
         sids.push_back(std::make_shared<FlexibleBodySid>(
@@ -120,7 +119,7 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
     const std::string key = k + ".sid";
     try {
       // Bodies of one SID file share its data (read once; the runtime never changes it).
-      const bool frozen = B["frozen"] && B["frozen"].as<bool>();
+      const bool frozen = getBool(doc, B["frozen"], k + ".frozen");
       const std::string shareKey = (frozen ? "frozen:" : "elastic:") + files[b];
       if (auto it = loaded.find(shareKey); it != loaded.end()) {
         sids.push_back(it->second);
@@ -128,7 +127,7 @@ std::vector<std::shared_ptr<FlexibleBodySid>> loadBodyData(
       }
       auto sid = std::make_shared<FlexibleBodySid>(load_sid(files[b], content));
       if (frozen) {
-        if (sid->model == "axisymmetric")
+        if (sid->model == ModelKind::kAxisymmetric)
           throw InputError("an axisymmetric body cannot be frozen (it would lose its axis)");
         sid = std::make_shared<FlexibleBodySid>(frozenSid(*sid));
       }
@@ -230,15 +229,14 @@ InitialPose readInitialPose(const YamlDocument& doc, int b, const FlexibleBodySi
   const YAML::Node B = doc.root["bodies"][b];
   const std::string k = Str() << "bodies[" << b << "]";
   InitialPose in;
-  in.r = vectorOr(doc, B["position"], k + ".position", Eigen::Vector3d::Zero());
-  Eigen::Vector4d p =
-      vectorOr(doc, B["orientation"], k + ".orientation", Eigen::Vector4d(1, 0, 0, 0));
+  in.r = vector3(doc, B["position"], k + ".position");
+  Eigen::Vector4d p = numbers(doc, B["orientation"], k + ".orientation");
   if (!(p.norm() > 0.0))
     throw inputError(doc, B["orientation"], k + ".orientation", "expected a non-zero quaternion");
   p.normalize();
   in.A = rotationMatrix(p.data());
-  in.v = vectorOr(doc, B["velocity"], k + ".velocity", Eigen::Vector3d::Zero());
-  in.w = vectorOr(doc, B["angular_velocity"], k + ".angular_velocity", Eigen::Vector3d::Zero());
+  in.v = vector3(doc, B["velocity"], k + ".velocity");
+  in.w = vector3(doc, B["angular_velocity"], k + ".angular_velocity");
   const int nq = sid.nq();
   in.q = vectorOr(doc, B["q"], k + ".q", Eigen::VectorXd::Zero(nq));
   in.qd = vectorOr(doc, B["qdot"], k + ".qdot", Eigen::VectorXd::Zero(nq));

@@ -13,12 +13,6 @@ namespace ffriga {
 
 namespace {
 
-// YAML spelling of JointType (the schema restricts the values to these).
-const std::pair<const char*, JointType> kJointTypes[] = {{"spherical", JointType::kSpherical},
-                                                         {"revolute", JointType::kRevolute},
-                                                         {"fixed", JointType::kFixed},
-                                                         {"prismatic", JointType::kPrismatic}};
-
 // Orthonormal frame with e3 along `axis`: e1 the inertial axis least aligned with it,
 // made orthogonal (deterministic, so results do not depend on anything but the input).
 Eigen::Matrix3d frameAlong(const Eigen::Vector3d& axis) {
@@ -164,10 +158,8 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
     const std::string k = Str() << "joints[" << j << "]";
     Connection c = readConnection(doc, J, k, "joint", j, names, index, markers, sys, pose);
     const std::string& name = c.name;
-    const std::string typeName = getString(doc, J["type"], k + ".type");
-    JointType type = JointType::kSpherical;
-    for (const auto& [spelling, t] : kJointTypes)
-      if (typeName == spelling) type = t;
+    const JointType type = getKind<JointType>(doc, J["type"], k + ".type");
+    const char* typeName = jointTypeName(type);
     MarkerEnd& a = c.a;
     MarkerEnd& b = c.b;
     const bool needsAxis = type == JointType::kRevolute || type == JointType::kPrismatic;
@@ -191,14 +183,10 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
                                << e->marker.name << "' of flexible body '"
                                << sys.body(e->body).name() << "' has no rotation modes in its SID");
     }
-    double angle = 0.0;
-    if (J["initial_angle"]) {
-      if (type != JointType::kRevolute)
-        throw inputError(doc, J["initial_angle"], k + ".initial_angle",
-                         "initial_angle is for revolute joints");
-      angle = getDouble(doc, J["initial_angle"], k + ".initial_angle");
-    }
-    angles.push_back(angle);
+    if (type != JointType::kRevolute && isGiven(doc, J["initial_angle"]))
+      throw inputError(doc, J["initial_angle"], k + ".initial_angle",
+                       "initial_angle is for revolute joints");
+    angles.push_back(getDouble(doc, J["initial_angle"], k + ".initial_angle"));
     const Eigen::Matrix3d Aa = a.body >= 0 ? pose[a.body].A : Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d Ab = pose[b.body].A;
     auto joint = std::make_unique<Joint>(name, type, std::move(a), std::move(b));
@@ -224,7 +212,7 @@ void addForceElements(const YamlDocument& doc, const std::map<std::string, int>&
     const double l0 = (rb - endPosition(a, pose)).norm();
     const std::string type = getString(doc, F["type"], k + ".type");
     auto forbid = [&](const char* key) {
-      if (F[key])
+      if (isGiven(doc, F[key]))
         throw inputError(doc, F[key], k + "." + key,
                          Str() << "'" << key << "' is not a key of " << type);
     };
@@ -232,7 +220,7 @@ void addForceElements(const YamlDocument& doc, const std::map<std::string, int>&
       forbid("spheres");
       if (!F["stiffness"]) throw inputError(doc, F, k, "a spring_damper needs 'stiffness' (N/m)");
       const double stiff = getDouble(doc, F["stiffness"], k + ".stiffness");
-      const double damp = F["damping"] ? getDouble(doc, F["damping"], k + ".damping") : 0.0;
+      const double damp = getDouble(doc, F["damping"], k + ".damping");
       const double free =
           F["free_length"] ? getDouble(doc, F["free_length"], k + ".free_length") : l0;
       sys.addForceElement(

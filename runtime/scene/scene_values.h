@@ -10,14 +10,20 @@
 
 namespace ffriga {
 
-// The list of numbers at `node` (key[i] in messages), or `fallback` if the key is absent.
-inline Eigen::VectorXd vectorOr(const YamlDocument& doc, const YAML::Node& node,
-                                const std::string& key, const Eigen::VectorXd& fallback) {
-  if (!node) return fallback;
+// The list of numbers at `node` (key[i] in messages).
+inline Eigen::VectorXd numbers(const YamlDocument& doc, const YAML::Node& node,
+                               const std::string& key) {
   Eigen::VectorXd v(node.size());
   for (std::size_t i = 0; i < node.size(); ++i)
     v(i) = getDouble(doc, node[i], Str() << key << "[" << i << "]");
   return v;
+}
+
+// Keys whose schema has no default (the value when absent depends on the scene: a body's
+// mode count, "automatic" for a search margin): `fallback` when absent.
+inline Eigen::VectorXd vectorOr(const YamlDocument& doc, const YAML::Node& node,
+                                const std::string& key, const Eigen::VectorXd& fallback) {
+  return node ? numbers(doc, node, key) : fallback;
 }
 
 inline double doubleOr(const YamlDocument& doc, const YAML::Node& node, const std::string& key,

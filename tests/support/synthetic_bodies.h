@@ -18,7 +18,7 @@ inline void pointMassInvariants(FlexibleBodySid& sid, const Eigen::VectorXd& m,
                                 const Eigen::MatrixXd& X, const Eigen::MatrixXd& Phi,
                                 const Eigen::MatrixXd& K) {
   const int N = static_cast<int>(m.size()), nq = static_cast<int>(Phi.cols());
-  sid.model = "solid";
+  sid.model = ffriga::ModelKind::kSolid;
   sid.space_dim = 3;
   sid.mass = m.sum();
   sid.first_moment.setZero();
@@ -105,7 +105,7 @@ inline FlexibleBodySid springBody(int nq, double k) {
     for (int i = 0; i < nf; ++i) Phi(freeDofs[i], j) = eig.eigenvectors()(i, j);
   FlexibleBodySid sid;
   sid.name = "springs";
-  sid.frame = "tangent";
+  sid.frame = ffriga::FrameKind::kTangent;
   pointMassInvariants(sid, m, X, Phi, K);
   return sid;
 }
@@ -115,7 +115,7 @@ inline FlexibleBodySid springBody(int nq, double k) {
 inline FlexibleBodySid rigidBody(double m, const Eigen::Vector3d& J) {
   FlexibleBodySid sid;
   sid.name = "rigid";
-  sid.model = "solid";
+  sid.model = ffriga::ModelKind::kSolid;
   sid.space_dim = 3;
   sid.mass = m;
   sid.inertia = J.asDiagonal();

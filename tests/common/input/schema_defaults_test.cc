@@ -239,11 +239,13 @@ TEST_CASE("defaults of the real scene schema", "[schema][defaults][scene]") {
   CHECK(b["frozen"].as<bool>() == false);
   CHECK(isSchemaDefault(doc, b["frozen"]));
   CHECK_NOTHROW(schema.validate(doc));
-  // Without outputs, nothing is inserted for it (outputs has no default).
+  // Without outputs, its default {} is inserted and completed in turn.
   const YamlDocument bare = completed(
       schema,
       "bodies: [{name: a, sid: a.sid.h5}]\nintegrator: {end_time: 1, output_interval: 1}\n");
-  CHECK(!bare.root["outputs"]);
+  REQUIRE(bare.root["outputs"].IsMap());
+  CHECK(bare.root["outputs"]["flush_rows"].as<int>() == 16);
+  CHECK(!bare.root["outputs"]["visualisation"]);
   CHECK(bare.root["integrator"]["rtol"].as<double>() == 1e-6);
 }
 

@@ -109,7 +109,7 @@ TEST_CASE("rigid body: free fall and rotation about a principal axis are analyti
 TEST_CASE("axisymmetric body: free fall along the axis", "[ffr]") {
   // A rigid axisymmetric body (nq = 0): Y(t) = Y0 + V0 t + g t^2 / 2.
   auto sid = std::make_shared<FlexibleBodySid>(test::rigidBody(0.5, {1, 1, 1}));
-  sid->model = "axisymmetric";
+  sid->model = ffriga::ModelKind::kAxisymmetric;
   sid->space_dim = 2;
   sid->control_points = Eigen::MatrixXd(0, 2);
   MultibodySystem sys;

@@ -37,7 +37,7 @@ FlexibleBodySid rigidSphere2d(double R) {
   arc = insertKnots(arc, 0, X);
   FlexibleBodySid sid;
   sid.name = "sphere";
-  sid.model = "axisymmetric";
+  sid.model = ffriga::ModelKind::kAxisymmetric;
   sid.space_dim = 2;
   sid.mass = 7850.0 * 4.0 / 3.0 * M_PI * R * R * R;
   sid.inertia = Eigen::Matrix3d::Identity() * 0.4 * sid.mass * R * R;
