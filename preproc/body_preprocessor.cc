@@ -204,6 +204,8 @@ void BodyPreprocessor::selectInterface() {
 void BodyPreprocessor::reduce() {
   try {
     reduced_ = reduceBody(system_.K, system_.M, options_);
+  } catch (const ParameterError& e) {
+    throw inputErrorAt(config_.source, e);
   } catch (const InputError& e) {
     throw InputError(Str() << config_.source.path << ": " << e.what());
   } catch (const ComputeError& e) {

@@ -14,12 +14,28 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace ffriga {
 
 class InputError : public std::runtime_error {
  public:
   explicit InputError(const std::string& message) : std::runtime_error(message) {}
+};
+
+// An input error found while computing, about one parameter of the input file: `key` its
+// path as errors name it ("reduction.normal_modes", "contact.region"). The program that
+// read the file rethrows it with the file and the key's YAML line
+// (common/input/yaml_input.h: inputErrorAt); what() alone reads "key 'KEY': MESSAGE".
+class ParameterError : public InputError {
+ public:
+  ParameterError(std::string key, const std::string& message)
+      : InputError("key '" + key + "': " + message), key_(std::move(key)), message_(message) {}
+  const std::string& key() const { return key_; }
+  const std::string& message() const { return message_; }
+
+ private:
+  std::string key_, message_;
 };
 
 class ComputeError : public std::runtime_error {

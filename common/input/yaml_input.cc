@@ -231,6 +231,35 @@ const YamlDefault* defaultOf(const YamlDocument& doc, const YAML::Node& node) {
 
 }  // namespace
 
+YAML::Node nodeAt(const YamlDocument& doc, const std::string& key) {
+  YAML::Node node(doc.root);  // rebound with reset() and read through const: no insertion
+  std::size_t i = 0;
+  while (i < key.size() && node) {
+    if (key[i] == '.') ++i;
+    if (key[i] == '[') {
+      const std::size_t close = key.find(']', i);
+      if (close == std::string::npos || !node.IsSequence()) return YAML::Node(YAML::NodeType::Undefined);
+      const std::size_t index = std::stoul(key.substr(i + 1, close - i - 1));
+      if (index >= node.size()) return YAML::Node(YAML::NodeType::Undefined);
+      node.reset(node[index]);
+      i = close + 1;
+      continue;
+    }
+    const std::size_t end = key.find_first_of(".[", i);
+    const std::string name = key.substr(i, end == std::string::npos ? std::string::npos : end - i);
+    if (!node.IsMap()) return YAML::Node(YAML::NodeType::Undefined);
+    const YAML::Node child = static_cast<const YAML::Node&>(node)[name];
+    if (!child) return YAML::Node(YAML::NodeType::Undefined);
+    node.reset(child);
+    i = end == std::string::npos ? key.size() : end;
+  }
+  return node;
+}
+
+InputError inputErrorAt(const YamlDocument& doc, const ParameterError& e) {
+  return inputError(doc, nodeAt(doc, e.key()), e.key(), e.message());
+}
+
 bool isSchemaDefault(const YamlDocument& doc, const YAML::Node& node) {
   return defaultOf(doc, node) != nullptr;
 }

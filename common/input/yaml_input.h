@@ -54,6 +54,13 @@ int yamlLine(const YAML::Node& node);
 InputError inputError(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                       const std::string& message);
 
+// The node at key path `key` ("reduction.normal_modes", "bodies[1].name"), undefined if the
+// document has none.
+YAML::Node nodeAt(const YamlDocument& doc, const std::string& key);
+// inputError() for a ParameterError found after parsing: the file, the key's line (if the
+// file gives the key) and the key.
+InputError inputErrorAt(const YamlDocument& doc, const ParameterError& e);
+
 // Whether `node` is, or lies inside, a value that JsonSchema::applyDefaults inserted (not one
 // the file or an override gave): checks that forbid a key in some cases must not fire on a
 // default the schema gives for every case (frozen on a rigid body, initial_angle on a joint

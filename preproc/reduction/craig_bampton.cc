@@ -176,9 +176,10 @@ void checkInterface(const Partition& p, const ReductionOptions& o, int n) {
                            << "contact.region");
   }
   if (o.normal_modes < 0 || o.normal_modes >= ni) {
-    throw InputError(Str() << "reduction.normal_modes = " << o.normal_modes << " but the "
-                           << "fixed-interface problem has " << ni << " DOFs (" << n
-                           << " in total, " << nb << " on the interface)");
+    throw ParameterError("reduction.normal_modes",
+                         Str() << o.normal_modes << " normal modes, but the fixed-interface "
+                               << "problem has " << ni << " DOFs (" << n << " in total, " << nb
+                               << " on the interface)");
   }
 }
 
@@ -268,8 +269,9 @@ Basis modalBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOp
   const int n = static_cast<int>(K.rows());
   const int nr = static_cast<int>(o.rigid_modes.cols());
   if (o.normal_modes < 1 || o.normal_modes + nr >= n) {
-    throw InputError(Str() << "reduction.normal_modes = " << o.normal_modes << " but the model "
-                           << "has " << n << " DOFs and " << nr << " rigid-body modes");
+    throw ParameterError("reduction.normal_modes",
+                         Str() << o.normal_modes << " normal modes, but the model has " << n
+                               << " DOFs and " << nr << " rigid-body modes");
   }
   // Any sigma < 0 makes K - sigma M positive definite and selects the lowest eigenvalues;
   // a small |sigma| relative to the stiffness scale keeps the rigid and the low elastic

@@ -27,7 +27,9 @@ class SparseCholesky {
   SparseCholesky& operator=(const SparseCholesky&) = delete;
 
   // Symbolic analysis (ordering, elimination tree) of the pattern of `upper` (square,
-  // compressed, upper triangle). Repeated calls with the same pattern are free.
+  // compressed, upper triangle). Repeated calls with the same pattern (its size, nonzero
+  // count and a 64-bit hash of its indices) keep the analysis; another pattern is analysed
+  // anew.
   Status analyze(const SparseMatrix& upper, std::string* message);
   // Numeric factorisation of `upper` (analysed first if needed). kNotPositiveDefinite
   // names the failing column in the message.
@@ -53,6 +55,8 @@ class SparseCholesky {
   cholmod_common_struct* common_ = nullptr;
   cholmod_factor_struct* factor_ = nullptr;
   int n_ = 0;
+  long nonzeros_ = 0;              // of the analysed pattern
+  unsigned long long pattern_ = 0;  // hash of the analysed pattern's indices
   bool factorized_ = false;
   double factor_nonzeros_ = 0.0;
   double factor_flops_ = 0.0;

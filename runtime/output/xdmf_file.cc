@@ -12,6 +12,24 @@ namespace ffriga {
 
 namespace {
 
+// `text` with XML's special characters as entities, for attribute values and text content
+// (body names are any string a scene gives, schemas/scene.schema.json).
+std::string xmlEscaped(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      case '\'': out += "&apos;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
 // A [1, n(, 3)] slab of frame f of a [frames, n(, 3)] dataset.
 void hyperslab(std::ostringstream& x, const std::string& h5, const std::string& dataset,
                long frames, long f, long n, int components, const std::string& indent) {
@@ -35,8 +53,9 @@ void hyperslab(std::ostringstream& x, const std::string& h5, const std::string& 
 
 }  // namespace
 
-std::string xdmfText(const std::string& h5, const std::vector<double>& times,
+std::string xdmfText(const std::string& h5File, const std::vector<double>& times,
                      const std::vector<XdmfBody>& bodies) {
+  const std::string h5 = xmlEscaped(h5File);
   std::ostringstream x;
   x.precision(17);
   const long frames = static_cast<long>(times.size());
@@ -49,20 +68,20 @@ std::string xdmfText(const std::string& h5, const std::vector<double>& times,
     x << "        <Time Value=\"" << times[f] << "\" />\n";
     for (const XdmfBody& b : bodies) {
       const std::string in = "            ";
-      x << "        <Grid Name=\"" << b.name << "\" GridType=\"Uniform\">\n";
+      x << "        <Grid Name=\"" << xmlEscaped(b.name) << "\" GridType=\"Uniform\">\n";
       x << "          <Topology TopologyType=\"" << (b.corners == 8 ? "Hexahedron" : "Quadrilateral")
         << "\" NumberOfElements=\"" << b.cells << "\">\n";
       x << in << "<DataItem Dimensions=\"" << b.cells << " " << b.corners
-        << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":" << b.cells_dataset
+        << "\" NumberType=\"Int\" Precision=\"4\" Format=\"HDF\">" << h5 << ":" << xmlEscaped(b.cells_dataset)
         << "</DataItem>\n";
       x << "          </Topology>\n";
       x << "          <Geometry GeometryType=\"XYZ\">\n";
-      hyperslab(x, h5, b.points_dataset, frames, f, b.points, 3, in);
+      hyperslab(x, h5, xmlEscaped(b.points_dataset), frames, f, b.points, 3, in);
       x << "          </Geometry>\n";
       for (const XdmfField& field : b.fields) {
-        x << "          <Attribute Name=\"" << field.name << "\" AttributeType=\""
+        x << "          <Attribute Name=\"" << xmlEscaped(field.name) << "\" AttributeType=\""
           << (field.components > 1 ? "Vector" : "Scalar") << "\" Center=\"Node\">\n";
-        hyperslab(x, h5, field.dataset, frames, f, b.points, field.components, in);
+        hyperslab(x, h5, xmlEscaped(field.dataset), frames, f, b.points, field.components, in);
         x << "          </Attribute>\n";
       }
       x << "        </Grid>\n";

@@ -67,3 +67,28 @@ TEST_CASE("overrides: bad keys and values are input errors naming the override",
   CHECK(errorOf({"contacts..x=1"}).find("empty component") != std::string::npos);
   CHECK(errorOf({"name=[1, 2"}).find("the value is not valid YAML") != std::string::npos);
 }
+
+TEST_CASE("nodeAt and inputErrorAt: errors found after parsing name the key's line",
+          "[yaml][errors]") {
+  using namespace ffriga;
+  YamlDocument doc = parseYamlText(
+      "name: b\nreduction:\n  normal_modes: 5000\nbodies:\n  - {name: a}\n  - name: c\n", "b.yaml");
+  CHECK(nodeAt(doc, "reduction.normal_modes").as<int>() == 5000);
+  CHECK(nodeAt(doc, "bodies[1].name").as<std::string>() == "c");
+  CHECK(yamlLine(nodeAt(doc, "bodies[1].name")) == 6);
+  CHECK(!nodeAt(doc, "bodies[2].name"));
+  CHECK(!nodeAt(doc, "reduction.frame"));
+  CHECK(!nodeAt(doc, "name.inner"));
+  CHECK(!doc.root["reduction"]["frame"]);  // the lookups inserted nothing
+  const ParameterError e("reduction.normal_modes", "too many");
+  CHECK(std::string(e.what()) == "key 'reduction.normal_modes': too many");
+  CHECK(std::string(inputErrorAt(doc, e).what()) ==
+        "b.yaml:3: key 'reduction.normal_modes': too many");
+  // A key the file does not give: the file and the key, no line.
+  CHECK(std::string(inputErrorAt(doc, ParameterError("reduction.frame", "x")).what()) ==
+        "b.yaml: key 'reduction.frame': x");
+  // An override names itself.
+  applyOverrides(doc, {"reduction.normal_modes=7"});
+  CHECK(std::string(inputErrorAt(doc, e).what()) ==
+        "b.yaml: --set 'reduction.normal_modes=7': key 'reduction.normal_modes': too many");
+}

@@ -49,7 +49,7 @@ TEST_CASE("point inversion: interior, boundary and degenerate points of the half
     checkRoundTrip(ball, xi, tol, true);
   }
   for (int trial = 0; trial < 10; ++trial) {
-    // v (the ball's angle zeta) stays away from the seam zeta = 1 (see the [!mayfail] case).
+    // v (the ball's angle zeta) stays away from the seam zeta = 1 (see the seam's own case).
     const double u = uniform(0.0, 1.0), v = uniform(0.0, 0.95);
     // The disk's axis (xi = 0, x = 0), its arcs (eta = 0, 1) and its collapsed edge (xi = 1);
     // the ball's surface (eta = 0, 1), axis (xi = 0) and seam (zeta = 0): the point is found,
@@ -86,12 +86,12 @@ TEST_CASE("point inversion: a point outside the ball is not found, no nearer tha
   }
 }
 
-TEST_CASE("point inversion: points next to the ball's seam are found", "[inversion][!mayfail]") {
-  // Known bug: the angle zeta of solidSphere is periodic (zeta = 0 and 1 are the same seam),
-  // but the search starts from the nearest grid sample, which for a point just below zeta = 1
-  // can be the seam's copy at zeta = 0, and the clamped iteration cannot step below 0: the
-  // point is reported as not found (seen for surface points, eta = 1: zeta = 0.99234 stuck at
-  // zeta = 0, 0.28 mm away, with R = 10 mm; the interior points here are found).
+TEST_CASE("point inversion: points next to the ball's seam are found", "[inversion]") {
+  // The angle zeta of solidSphere is periodic (zeta = 0 and 1 are the same seam): for a point
+  // just below zeta = 1 the nearest grid sample can be the seam's copy at zeta = 0, from which
+  // the clamped iteration cannot step below 0 (once reported as not found for surface points,
+  // eta = 1: zeta = 0.99234 stuck at zeta = 0, 0.28 mm away, with R = 10 mm). The search
+  // now goes on from the next nearest samples, among them the copy at zeta = 1.
   const double R = 0.01;
   const NurbsPatch ball = solidSphere(R);
   for (const double zeta : {0.995, 0.99234, 0.99}) {

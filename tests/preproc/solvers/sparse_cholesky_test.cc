@@ -208,10 +208,10 @@ TEST_CASE("sparse Cholesky: a matrix that is not positive definite is reported",
 }
 
 TEST_CASE("sparse Cholesky: the failure message names the matrix's failing column",
-          "[cholesky][!mayfail]") {
-  // Known bug: the column in the message is CHOLMOD's L->minor, a position in the
-  // fill-reducing order, not a column of the matrix given (for k = 0 it says "column 68 of
-  // 100"). By the construction above the failing column is k.
+          "[cholesky]") {
+  // The column in the message is the matrix's, not CHOLMOD's L->minor (a position in the
+  // fill-reducing order: once "column 68 of 100" for k = 0). By the construction above the
+  // failing column is k.
   const int N = 10, n = N * N;
   for (const int k : {0, 53, n - 1}) {
     SparseCholesky chol;
@@ -250,12 +250,11 @@ TEST_CASE("sparse Cholesky: the analysis is reused for matrices of the same patt
 }
 
 TEST_CASE("sparse Cholesky: a new pattern of the same size is analysed again",
-          "[cholesky][!mayfail]") {
-  // Known bug: analyze() takes any matrix of the size it has analysed for the same pattern
-  // (it compares the size only), so factorize() of a matrix with entries outside the analysed
-  // pattern keeps the old ordering and supernodes: CHOLMOD drops the new entries and returns
-  // a wrong factor with status kOk (measured: relative residual 4e-3 instead of 4e-16; the
-  // counts stay those of the old pattern).
+          "[cholesky]") {
+  // analyze() once compared the size only, so factorize() of a matrix with entries outside
+  // the analysed pattern kept the old ordering and supernodes: CHOLMOD dropped the new
+  // entries and returned a wrong factor with status kOk (measured: relative residual 4e-3
+  // instead of 4e-16; the counts stayed those of the old pattern).
   const SparseMatrix A0 = laplacian3d(12), A1 = laplacian3d(12, 30);
   SparseCholesky reused, fresh;
   std::string message;
