@@ -67,9 +67,7 @@ int main(int argc, char** argv) {
     const HierarchicalSpace space = bodySpace(config);
     const DofMap dofs(space, false, tiedControlPoints(space));
     ElasticityModel model;
-    model.youngs_modulus = config.material.youngs_modulus;
-    model.poisson_ratio = config.material.poisson_ratio;
-    model.density = config.material.density;
+    model.material = config.material;
     for (int a = 0; a < 3; ++a) model.gauss_points[a] = space.basePatch().degree(a) + 1;
     auto t0 = std::chrono::steady_clock::now();
     const ElasticSystem sys = assembleElasticity(space, dofs, model);

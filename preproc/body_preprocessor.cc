@@ -139,9 +139,7 @@ void BodyPreprocessor::setupGeometry() {
 void BodyPreprocessor::assembleSystem() {
   const NurbsPatch& patch = space_->basePatch();
   model_.axisymmetric = axi_;
-  model_.youngs_modulus = config_.material.youngs_modulus;
-  model_.poisson_ratio = config_.material.poisson_ratio;
-  model_.density = config_.material.density;
+  model_.material = config_.material;
   for (int a = 0; a < space_->paramDim(); ++a) model_.gauss_points[a] = patch.degree(a) + 1;
   system_ = assembleElasticity(*space_, *dofs_, model_);
   clock_.done("assembly", Str() << "K: " << system_.K.nonZeros() << " stored entries (upper)");
@@ -241,7 +239,7 @@ void BodyPreprocessor::computeInvariants() {
   const int s = space.spaceDim();
   std::array<int, 3> massPoints{};
   for (int a = 0; a < space.paramDim(); ++a) massPoints[a] = space_->basePatch().degree(a) + 3;
-  const MassProperties mp = massProperties(space, model_.density, axi_, massPoints);
+  const MassProperties mp = massProperties(space, model_.material.density, axi_, massPoints);
   if (options_.frame == FrameKind::kBuckens) {
     origin_ = mp.centreOfMass();
     if (axi_) origin_(0) = origin_(2) = 0.0;  // on the axis by symmetry
@@ -316,16 +314,12 @@ void BodyPreprocessor::extractSurfaces() {
 // Material and exact geometry for the runtime (stresses, Hertz's reference); the
 // visualisation mesh and the stress lines with their sampled displacement and stress modes.
 void BodyPreprocessor::sampleVisualisation() {
-  sid_.material.youngs_modulus = config_.material.youngs_modulus;
-  sid_.material.poisson_ratio = config_.material.poisson_ratio;
-  sid_.material.density = config_.material.density;
+  sid_.material = config_.material;
   sid_.geometry.type = toString(config_.geometry.kind);
   sid_.geometry.radius = config_.geometry.radius;
   sid_.geometry.length = config_.geometry.length;
   sid_.geometry.centre = -origin_;  // the geometries are built around the origin
-  IsotropicMaterial material;
-  material.youngs_modulus = config_.material.youngs_modulus;
-  material.poisson_ratio = config_.material.poisson_ratio;
+  const IsotropicMaterial& material = config_.material;
   const Eigen::MatrixXd& P = space_->controlPoints();
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
   const int s = space_->spaceDim();

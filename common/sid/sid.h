@@ -25,6 +25,7 @@
 
 #include <Eigen/Dense>
 
+#include "common/mechanics/isotropic_material.h"
 #include "common/sid/body_kinds.h"
 #include "common/splines/contact_surface.h"
 
@@ -40,13 +41,6 @@ struct Marker {
   // Rotation modes: the small rotation of the material at the marker per unit q,
   // Psi = 1/2 curl Phi (3 x nq, rad per unit q); empty when the SID carries none.
   Eigen::MatrixXd Psi;
-};
-
-// The body's material (the body file's, for stresses and Hertz's reference).
-struct SidMaterial {
-  double youngs_modulus = 0.0;  // E, Pa
-  double poisson_ratio = 0.0;   // nu, 1
-  double density = 0.0;         // rho, kg/m^3
 };
 
 // The exact geometry the body was built from (body file key geometry): its type and, for
@@ -153,7 +147,7 @@ struct FlexibleBodySid {
   std::vector<ContactSurface> surfaces;
   std::vector<Marker> markers;
 
-  SidMaterial material;
+  IsotropicMaterial material;  // the body file's, for stresses and Hertz's reference
   SidGeometry geometry;
   VisualisationMesh mesh;
   std::vector<StressLine> stress_lines;

@@ -131,7 +131,7 @@ void gaussPointTables(const SplineSpace& space, const ElasticityModel& model,
         w.G[c](g, j) = sq * v;
       }
     }
-    w.N.row(g) = std::sqrt(model.density * dV) * R.row(0);
+    w.N.row(g) = std::sqrt(model.material.density * dV) * R.row(0);
     // Gauss points are interior: r > 0.
     if (model.axisymmetric) w.G[2].row(g) = (sq / x(0)) * R.row(0);
   }
@@ -243,9 +243,7 @@ QuadratureSetup quadratureSetup(const ElasticityModel& model, int d, int s) {
     rules[a] = gaussLegendre(model.gauss_points[a]);
     ng *= model.gauss_points[a];
   }
-  IsotropicMaterial material;
-  material.youngs_modulus = model.youngs_modulus;
-  material.poisson_ratio = model.poisson_ratio;
+  const IsotropicMaterial& material = model.material;
   QuadratureSetup setup;
   setup.d = d;
   setup.s = s;

@@ -28,6 +28,7 @@
 
 #include <array>
 
+#include "common/mechanics/isotropic_material.h"
 #include "common/splines/spline_space.h"
 #include "preproc/assembly/dof_map.h"
 #include "preproc/solvers/sparse_matrix.h"
@@ -36,9 +37,7 @@ namespace ffriga {
 
 struct ElasticityModel {
   bool axisymmetric = false;
-  double youngs_modulus = 0.0;               // E, Pa
-  double poisson_ratio = 0.0;                // nu, -1 < nu < 1/2
-  double density = 0.0;                      // rho, kg/m^3
+  IsotropicMaterial material;
   std::array<int, 3> gauss_points{4, 4, 4};  // per parametric direction, >= 1
 };
 

@@ -6,13 +6,6 @@
 
 namespace ffriga {
 
-double IsotropicMaterial::lambda() const {
-  const double nu = poisson_ratio;
-  return youngs_modulus * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-}
-
-double IsotropicMaterial::mu() const { return youngs_modulus / (2.0 * (1.0 + poisson_ratio)); }
-
 Eigen::MatrixXd constitutiveMatrix(const IsotropicMaterial& m, bool axisymmetric) {
   const double l = m.lambda(), mu = m.mu();
   const int n = strainComponents(axisymmetric);

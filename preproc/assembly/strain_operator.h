@@ -17,14 +17,9 @@
 
 #include <Eigen/Dense>
 
-namespace ffriga {
+#include "common/mechanics/isotropic_material.h"
 
-struct IsotropicMaterial {
-  double youngs_modulus = 0.0;  // E, Pa
-  double poisson_ratio = 0.0;   // nu, -1 < nu < 1/2
-  double lambda() const;        // Pa
-  double mu() const;            // Pa
-};
+namespace ffriga {
 
 // Strain components: 6 (solid) or 4 (axisymmetric).
 inline int strainComponents(bool axisymmetric) { return axisymmetric ? 4 : 6; }

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/input/yaml_input.h"
+#include "common/mechanics/isotropic_material.h"
 #include "common/sid/body_kinds.h"
 #include "common/splines/hierarchical_space.h"
 #include "common/splines/nurbs_patch.h"
@@ -30,12 +31,6 @@ namespace ffriga {
 // The YAML spelling of geometry.type (the model's and reduction's: common/sid/body_kinds.h).
 const char* toString(GeometryKind geometry);
 bool parseKind(std::string_view text, GeometryKind* kind);
-
-struct Material {
-  double youngs_modulus = 0.0;  // E, Pa
-  double poisson_ratio = 0.0;   // nu, dimensionless, -1 < nu < 1/2
-  double density = 0.0;         // rho, kg/m^3
-};
 
 // The contact region (schema key `contact`): a box on a boundary face, knot coordinates.
 struct ContactConfig {
@@ -82,7 +77,7 @@ struct BodyConfig {
   YamlDocument source;  // the file as read (path, text, parsed tree)
   std::string name;
   ModelKind model = ModelKind::kSolid;
-  Material material;
+  IsotropicMaterial material;
   GeometryConfig geometry;
   RefinementConfig refinement;  // one entry per parametric direction
   // Hierarchical refinement of the globally refined patch (levels = 1: none). After the

@@ -69,7 +69,7 @@ TEST_CASE("elastic invariants from Ms equal brute-force quadrature", "[sid]") {
   for (bool axi : {true, false}) {
     const TensorSpace space(refine(axi ? halfDisk(0.01) : solidSphere(0.01), 1, 1));
     const DofMap dofs(space, axi);
-    ElasticityModel model{axi, 2.11e11, 0.3, 7850, {}};
+    ElasticityModel model{axi, {2.11e11, 0.3, 7850}, {}};
     for (int a = 0; a < space.paramDim(); ++a) model.gauss_points[a] = space.patch().degree(a) + 1;
     const ElasticSystem sys = assembleElasticity(space, dofs, model);
     const int s = space.spaceDim(), nq = 3, ncp = space.numFunctions();

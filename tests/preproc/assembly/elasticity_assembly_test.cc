@@ -68,9 +68,7 @@ double patchTestError(const NurbsPatch& patch, bool axisymmetric,
   DofMap dofs(space, axisymmetric);
   ElasticityModel model;
   model.axisymmetric = axisymmetric;
-  model.youngs_modulus = 2e11;
-  model.poisson_ratio = 0.3;
-  model.density = 7850;
+  model.material = {2e11, 0.3, 7850};
   // Degree 3p integrands (see distortedBox): (3p + 2) / 2 points per direction are exact.
   for (int a = 0; a < patch.paramDim(); ++a) model.gauss_points[a] = (3 * patch.degree(a) + 2) / 2;
   const ElasticSystem sys = assembleElasticity(space, dofs, model);
