@@ -62,7 +62,7 @@ double parseMaxMemory(const char* v) {
 }
 
 // The command line's run: --info FILE alone, or one body file with or without -o.
-ffriga::IgaprepConfig runConfig(const ffriga::CommonOptions& o, ffriga::IgaprepConfig c) {
+ffriga::IgaprepConfig runConfig(const ffriga::CommandLineConfig& o, ffriga::IgaprepConfig c) {
   c.output = o.output;
   c.sets = o.sets;
   c.verbosity = o.verbosity;
@@ -84,7 +84,7 @@ ffriga::IgaprepConfig runConfig(const ffriga::CommonOptions& o, ffriga::IgaprepC
 int main(int argc, char** argv) {
   return ffriga::runProgram("igaprep", [&]() {
     ffriga::IgaprepConfig config;
-    const ffriga::CommonOptions o =
+    const ffriga::CommandLineConfig o =
         ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
           const std::string a = av[i];
           if (a != "--info" && a != "--max-memory") return 0;

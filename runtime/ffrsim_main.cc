@@ -60,7 +60,7 @@ double parseEndTime(const std::string& v) {
 }
 
 // The command line's run: a scene with -o, or --restart with the result file only.
-ffriga::FfrsimConfig runConfig(const ffriga::CommonOptions& o, ffriga::FfrsimConfig c) {
+ffriga::FfrsimConfig runConfig(const ffriga::CommandLineConfig& o, ffriga::FfrsimConfig c) {
   c.verbosity = o.verbosity;
   c.sets = o.sets;
   if (c.restart) {
@@ -84,7 +84,7 @@ ffriga::FfrsimConfig runConfig(const ffriga::CommonOptions& o, ffriga::FfrsimCon
 int main(int argc, char** argv) {
   return ffriga::runProgram("ffrsim", [&]() {
     ffriga::FfrsimConfig config;
-    const ffriga::CommonOptions o =
+    const ffriga::CommandLineConfig o =
         ffriga::parseCommonOptions(argc, argv, [&](char** av, int i, int ac) -> int {
           const std::string a = av[i];
           if (a != "--sid-path" && a != "--restart" && a != "--end-time") return 0;

@@ -7,9 +7,9 @@
 
 namespace ffriga {
 
-CommonOptions parseCommonOptions(int argc, char** argv,
+CommandLineConfig parseCommonOptions(int argc, char** argv,
                                  const std::function<int(char**, int, int)>& extra) {
-  CommonOptions o;
+  CommandLineConfig o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const char* name) -> std::string {

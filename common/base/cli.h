@@ -16,7 +16,7 @@ class UsageError : public InputError {
   explicit UsageError(const std::string& message) : InputError(message) {}
 };
 
-struct CommonOptions {
+struct CommandLineConfig {
   bool help = false;
   bool version = false;
   int verbosity = 1;  // 0 with -q, 2 with -v
@@ -29,7 +29,7 @@ struct CommonOptions {
 // Parses argv. Unknown options and missing values throw UsageError. `extra` may consume a
 // program-specific option: called with (argv, i), it returns how many arguments it used
 // (0 if the option is not its own).
-CommonOptions parseCommonOptions(int argc, char** argv,
+CommandLineConfig parseCommonOptions(int argc, char** argv,
                                  const std::function<int(char**, int, int)>& extra = {});
 
 // Runs `body`, prints any error as "PROGRAM: error: MESSAGE" on stderr and returns the exit

@@ -38,8 +38,8 @@ struct MarkerEnd {
   int body = -1;                          // index in the system; -1: the ground
   const FloatingBody3d* model = nullptr;  // nullptr for the ground
   BodyMarker marker;                      // the ground's: x0 is an inertial point
-  // Joints only: the joint frame, columns e1 e2 e3, in body-frame components (ground:
-  // inertial), set by Joint::setFrame.
+  // Joints only: the joint axes, columns e1 e2 e3, in body-frame components (ground:
+  // inertial), set by Joint::setAxes.
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
 };
 

@@ -66,7 +66,7 @@ int Joint::numEquations() const {
   return 0;
 }
 
-void Joint::setFrame(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Aa,
+void Joint::setAxes(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Aa,
                      const Eigen::Matrix3d& Ab) {
   a_.axes = a_.model ? Eigen::Matrix3d(Aa.transpose() * E) : E;
   b_.axes = Ab.transpose() * E;

@@ -58,9 +58,9 @@ class Joint {
   JointType type() const { return type_; }
   const JointEnd& end(int i) const { return i == 0 ? a_ : b_; }
   int numEquations() const;
-  // Sets the joint frame from its inertial axes E (columns e1 e2 e3, orthonormal) and the
+  // Sets the joint axes from its inertial axes E (columns e1 e2 e3, orthonormal) and the
   // rotation matrices of the two bodies at that moment (the ground's is ignored).
-  void setFrame(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Aa, const Eigen::Matrix3d& Ab);
+  void setAxes(const Eigen::Matrix3d& E, const Eigen::Matrix3d& Aa, const Eigen::Matrix3d& Ab);
 
   // The equations at the ends' states (sp, sv of each body; nullptr for the ground).
   void evaluate(const double* spA, const double* svA, const double* spB, const double* svB,

@@ -164,26 +164,26 @@ ContactPair::TargetMotion ContactPair::targetMotion(Side& target, const Eigen::V
     return m;
   };
   TargetMotion tm;
-  if (target.references.empty() || changeAgainst(target.references.back().u) > renew) {
-    const double moves = target.references.empty()
+  if (target.snapshots.empty() || changeAgainst(target.snapshots.back().u) > renew) {
+    const double moves = target.snapshots.empty()
                              ? 0.0
-                             : target.references.back().moves +
-                                   changeAgainst(target.references.back().u);
-    target.references.push_back({target.next_reference++, u, moves});
-    if (static_cast<int>(target.references.size()) > kReferences) target.references.pop_front();
+                             : target.snapshots.back().moves +
+                                   changeAgainst(target.snapshots.back().u);
+    target.snapshots.push_back({target.next_snapshot++, u, moves});
+    if (static_cast<int>(target.snapshots.size()) > kSnapshots) target.snapshots.pop_front();
   }
-  tm.first = target.references.front().id;
-  for (const Side::Reference& r : target.references) tm.change.push_back(changeAgainst(r.u));
-  tm.moves = target.references.back().moves;
+  tm.first = target.snapshots.front().id;
+  for (const Side::Snapshot& r : target.snapshots) tm.change.push_back(changeAgainst(r.u));
+  tm.moves = target.snapshots.back().moves;
   return tm;
 }
 
 double ContactPair::TargetMotion::since(const Side::Clearance& cl) const {
-  const long j = cl.reference - first;
-  // Kept reference s: |u - u_s| + |u_e - u_s|; older: through the newest reference and the
+  const long j = cl.snapshot - first;
+  // Kept snapshot s: |u - u_s| + |u_e - u_s|; older: through the newest snapshot and the
   // moves between, |u - u_n| + (D_n - D_s) + |u_e - u_s|.
   if (j >= 0) return change[j] + cl.motion;
-  return change.back() + (moves - cl.reference_moves) + cl.motion;
+  return change.back() + (moves - cl.snapshot_moves) + cl.motion;
 }
 
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
@@ -200,7 +200,7 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   for (int c = 0; c < dim_; ++c) {
     if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) return;
   }
-  // Target motion of each side (header comment). A new reference is taken once the newest
+  // Target motion of each side (header comment). A new snapshot is taken once the newest
   // is a penetration tolerance away: records then hold d_T,e below that size.
   const double renew = penetrationTolerance();
   const TargetMotion motion[2] = {targetMotion(side_[0], wa.u, renew),
@@ -288,8 +288,8 @@ void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& p
     cl.valid = true;
     cl.gap = r.gap;
     cl.y.head(dim_) = y;
-    cl.reference = st.references.back().id;
-    cl.reference_moves = motion.moves;
+    cl.snapshot = st.snapshots.back().id;
+    cl.snapshot_moves = motion.moves;
     cl.motion = motion.change.back();
     return;
   }

@@ -20,10 +20,10 @@
 //   g_e - |y - y_e| - (d_T + d_T,e) > 0,
 // y the point in the target's body frame (distances are frame-invariant), y_e its value at
 // that search, and d_T + d_T,e a bound on how far the target surface has moved in its
-// frame since: its control points' largest displacement change against a reference
+// frame since: its control points' largest displacement change against a snapshot
 // (convex hull property: the surface moves no more than its control points), d_T now and
-// d_T,e at the search; the last kReferences references are kept, for older ones the moves
-// between the references are added (the triangle inequality). The signed gap is
+// d_T,e at the search; the last kSnapshots snapshots are kept, for older ones the moves
+// between the snapshots are added (the triangle inequality). The signed gap is
 // 1-Lipschitz in the point and in the surface, so such a point is not searched: it cannot
 // carry force (only by passing round the surface's edge, which the searched points report
 // as beyond-edge). The forces are those of searching every point.
@@ -144,30 +144,30 @@ class ContactPair : public ForceElement {
       bool valid = false;
       double gap = 0.0;                               // g_e, m
       Eigen::Vector3d y = Eigen::Vector3d::Zero();    // target frame, m (2D: 2 entries)
-      long reference = 0;                             // the target's reference at the search
-      double reference_moves = 0.0;                   // its D_s, m
+      long snapshot = 0;                              // the target's snapshot at the search
+      double snapshot_moves = 0.0;                    // its D_s, m
       double motion = 0.0;                            // d_T,e against it, m
     };
     std::vector<Clearance> clearance;
-    // This side as a target: its last kReferences reference displacements of the surface
+    // This side as a target: its last kSnapshots snapshot displacements of the surface
     // control points (body frame), each with its number and D_s, the sum of the moves of
-    // the references before it (m).
-    struct Reference {
+    // the snapshots before it (m).
+    struct Snapshot {
       long id = 0;
       Eigen::VectorXd u;
       double moves = 0.0;
     };
-    std::deque<Reference> references;
-    long next_reference = 0;
+    std::deque<Snapshot> snapshots;
+    long next_snapshot = 0;
   };
-  static constexpr int kReferences = 16;
-  // The target's motion against its references at displacements u (PhiSt^T q): the largest
-  // control point displacement change against each (m); a new reference is taken when the
+  static constexpr int kSnapshots = 16;
+  // The target's motion against its snapshots at displacements u (PhiSt^T q): the largest
+  // control point displacement change against each (m); a new snapshot is taken when the
   // change against the newest exceeds `renew`.
   struct TargetMotion {
-    long first = 0;              // number of references.front()
-    std::vector<double> change;  // against each reference, oldest first
-    double moves = 0.0;          // D of the newest reference
+    long first = 0;              // number of snapshots.front()
+    std::vector<double> change;  // against each snapshot, oldest first
+    double moves = 0.0;          // D of the newest snapshot
     // Bound on the target's surface motion since a search with record `cl` (m).
     double since(const Side::Clearance& cl) const;
   };

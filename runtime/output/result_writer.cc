@@ -43,7 +43,7 @@ ResultWriter::~ResultWriter() {
   }
 }
 
-void ResultWriter::enableFrames(const VisualisationSettings& settings) {
+void ResultWriter::enableFrames(const VisualisationFramesConfig& settings) {
   auto frames = std::make_unique<FrameWriter>(*file_, layout_, settings, restart_time_);
   frames_ = frames.get();
   sinks_.push_back(std::move(frames));

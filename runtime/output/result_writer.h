@@ -46,7 +46,7 @@ class ResultWriter {
 
   // Visualisation frames (runtime/output/visualisation_frames.h) from now on, at the output
   // rows they fall on; on a restart, frames after the restart time are dropped.
-  void enableFrames(const VisualisationSettings& settings);
+  void enableFrames(const VisualisationFramesConfig& settings);
   // Stresses along the SIDs' stress lines at the largest contact force
   // (runtime/output/peak_stress_lines.h); partners: each body's Hertz partner, if any.
   void enablePeakStressLines(std::vector<std::optional<HertzPartner>> partners);

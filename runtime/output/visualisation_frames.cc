@@ -84,7 +84,7 @@ std::string xdmfPathFor(const std::string& result_path) {
 }
 
 FrameWriter::FrameWriter(ResultFile& file, const OutputLayout& layout,
-                         const VisualisationSettings& settings, double resume_time)
+                         const VisualisationFramesConfig& settings, double resume_time)
     : path_(file.path()), file_(file.id()), settings_(settings) {
   const h5::Context c{path_};
   const bool appending = resume_time >= 0.0;

@@ -33,7 +33,7 @@
 
 namespace ffriga {
 
-struct VisualisationSettings {
+struct VisualisationFramesConfig {
   bool enabled = false;
   double interval = 0.0;       // s
   double magnification = 1.0;  // of the elastic displacement in `points`
@@ -47,7 +47,7 @@ class FrameWriter : public OutputSink {
  public:
   // Creates the group /visualisation of `file` (or, with resume_time >= 0, opens it and
   // drops the frames after resume_time). Bodies without a mesh (rigid bodies) are skipped.
-  FrameWriter(ResultFile& file, const OutputLayout& layout, const VisualisationSettings& settings,
+  FrameWriter(ResultFile& file, const OutputLayout& layout, const VisualisationFramesConfig& settings,
               double resume_time);
   ~FrameWriter() override;
   // Whether an output row at time t gets a frame.
@@ -69,7 +69,7 @@ class FrameWriter : public OutputSink {
   double frameAfter(double t) const;
   std::string path_;
   hid_t file_;
-  VisualisationSettings settings_;
+  VisualisationFramesConfig settings_;
   h5::Handle group_, time_;
   std::vector<std::unique_ptr<Body>> bodies_;
   std::vector<double> times_;  // every frame's time, on disk and pending

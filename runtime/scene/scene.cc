@@ -183,7 +183,7 @@ void SceneBuilder::addContacts() {
 // The time span, the output interval and the integrator's tolerances and limits.
 void SceneBuilder::readIntegrator() {
   const YAML::Node I = doc().root["integrator"];
-  SimulationSettings& s = scene_.settings;
+  SimulationConfig& s = scene_.settings;
   s.end_time = getDouble(doc(), I["end_time"], "integrator.end_time");
   s.output_interval = getDouble(doc(), I["output_interval"], "integrator.output_interval");
   s.integrator.rtol = getDouble(doc(), I["rtol"], "integrator.rtol");
@@ -229,7 +229,7 @@ void SceneBuilder::readVisualisation() {
   const YAML::Node O = doc().root["outputs"];
   if (!O || !O["visualisation"]) return;
   const YAML::Node V = O["visualisation"];
-  VisualisationSettings& v = scene_.visualisation;
+  VisualisationFramesConfig& v = scene_.visualisation;
   v.enabled = true;
   v.interval = getDouble(doc(), V["interval"], "outputs.visualisation.interval");
   v.magnification = getDouble(doc(), V["magnification"], "outputs.visualisation.magnification");
@@ -259,7 +259,7 @@ void SceneBuilder::readOutputs() {
   const YAML::Node O = doc().root["outputs"];  // the schema's default {} when absent
   scene_.flush.rows = getInt(doc(), O["flush_rows"], "outputs.flush_rows");
   scene_.flush.interval = getDouble(doc(), O["flush_interval"], "outputs.flush_interval");
-  SimulationSettings& s = scene_.settings;
+  SimulationConfig& s = scene_.settings;
   s.progress_interval = getDouble(doc(), O["progress_interval"], "outputs.progress_interval");
   s.contact_output_interval =
       doubleOr(doc(), O["contact_output_interval"], "outputs.contact_output_interval", 0.0);

@@ -42,7 +42,7 @@ struct Scene {
   std::string name;
   std::unique_ptr<MultibodySystem> system;
   Eigen::VectorXd y0;
-  SimulationSettings settings;
+  SimulationConfig settings;
   FlushConfig flush;  // outputs.flush_rows, outputs.flush_interval
   std::vector<std::string> sid_files;  // resolved path of each body's SID
   // Initial reference position (m) and velocity (m/s) of each body, inertial components,
@@ -54,7 +54,7 @@ struct Scene {
   // Warnings about the model (runtime/bodies/quasi_static_rule.h), one line each; ffrsim
   // prints them and stores them in the result file (root attribute `warnings`).
   std::vector<std::string> warnings;
-  VisualisationSettings visualisation;  // outputs.visualisation
+  VisualisationFramesConfig visualisation;  // outputs.visualisation
 };
 
 // sets: command-line overrides "KEY=VALUE" (common/input/yaml_overrides.h), applied before the

@@ -13,9 +13,9 @@ namespace ffriga {
 
 namespace {
 
-// Orthonormal frame with e3 along `axis`: e1 the inertial axis least aligned with it,
+// Orthonormal joint axes with e3 along `axis`: e1 the inertial axis least aligned with it,
 // made orthogonal (deterministic, so results do not depend on anything but the input).
-Eigen::Matrix3d frameAlong(const Eigen::Vector3d& axis) {
+Eigen::Matrix3d axesAlong(const Eigen::Vector3d& axis) {
   const Eigen::Vector3d e3 = axis.normalized();
   int k = 0;
   for (int i = 1; i < 3; ++i)
@@ -173,7 +173,7 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
       const Eigen::Vector3d axis = vector3(doc, J["axis"], k + ".axis");
       if (!(axis.norm() > 0.0))
         throw inputError(doc, J["axis"], k + ".axis", "expected a non-zero vector");
-      E = frameAlong(axis);
+      E = axesAlong(axis);
     }
     const bool rotational = type != JointType::kSpherical;
     for (const MarkerEnd* e : {&a, &b}) {
@@ -190,7 +190,7 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
     const Eigen::Matrix3d Aa = a.body >= 0 ? pose[a.body].A : Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d Ab = pose[b.body].A;
     auto joint = std::make_unique<Joint>(name, type, std::move(a), std::move(b));
-    joint->setFrame(E, Aa, Ab);
+    joint->setAxes(E, Aa, Ab);
     sys.addJoint(std::move(joint));
   }
   return angles;

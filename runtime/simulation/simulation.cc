@@ -147,7 +147,7 @@ void writeOutputs(BdfIntegrator& integ, MultibodySystem& system, ResultWriter& w
   }
 }
 
-void printProgress(const SimulationSettings& settings, double t, const IntegratorStats& now,
+void printProgress(const SimulationConfig& settings, double t, const IntegratorStats& now,
                    double elapsed) {
   const double left = t > 0.0 ? elapsed * (settings.end_time - t) / t : 0.0;
   std::fprintf(stderr, "ffrsim: t = %.6g s (%.1f %%), %ld steps, %.1f s elapsed, ~%.1f s left\n",
@@ -164,7 +164,7 @@ void printProgress(const SimulationSettings& settings, double t, const Integrato
 // One run of the time loop: its output schedule, contact phase and figures.
 class TimeLoop {
  public:
-  TimeLoop(MultibodySystem& system, const SimulationSettings& settings, ResultWriter& writer)
+  TimeLoop(MultibodySystem& system, const SimulationConfig& settings, ResultWriter& writer)
       : system_(system), settings_(settings), writer_(writer), start_(Clock::now()) {
     nOut_ = std::max(1L, std::lround(std::ceil(settings.end_time / settings.output_interval - 1e-9)));
     last_progress_ = start_;
@@ -186,7 +186,7 @@ class TimeLoop {
   void account(const BdfIntegrator& integ, Clock::time_point s0);
 
   MultibodySystem& system_;
-  const SimulationSettings& settings_;
+  const SimulationConfig& settings_;
   ResultWriter& writer_;
   SimulationReport report_;
   Clock::time_point start_, last_progress_;
@@ -308,7 +308,7 @@ SimulationReport TimeLoop::fail(const std::exception& e) {
 }  // namespace
 
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
-                          const SimulationSettings& settings, ResultWriter& writer,
+                          const SimulationConfig& settings, ResultWriter& writer,
                           const RestartRecord* resume) {
   FFRIGA_CHECK(
       settings.end_time > 0.0 && settings.output_interval > 0.0,

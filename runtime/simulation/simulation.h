@@ -22,7 +22,7 @@
 
 namespace ffriga {
 
-struct SimulationSettings {
+struct SimulationConfig {
   double end_time = 0.0;         // s
   double output_interval = 0.0;  // s; the first row is at t = 0
   // s; > 0: also a row at every multiple of it in steps that begin or end in contact
@@ -45,7 +45,7 @@ struct SimulationReport {
 // figures and statistics continued from the record, no row written at the start (the
 // writer was opened on the record's file).
 SimulationReport simulate(MultibodySystem& system, const Eigen::VectorXd& y0,
-                          const SimulationSettings& settings, ResultWriter& writer,
+                          const SimulationConfig& settings, ResultWriter& writer,
                           const RestartRecord* resume = nullptr);
 
 }  // namespace ffriga

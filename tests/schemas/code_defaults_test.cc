@@ -82,9 +82,9 @@ TEST_CASE("code defaults: the scene's structs agree with scene.schema.json", "[s
   const FlushConfig flush;
   CHECK(flush.rows == defaultOf<int>(kSceneSchema, "outputs.flush_rows"));
   CHECK(flush.interval == defaultOf<double>(kSceneSchema, "outputs.flush_interval"));
-  CHECK(SimulationSettings().progress_interval ==
+  CHECK(SimulationConfig().progress_interval ==
         defaultOf<double>(kSceneSchema, "outputs.progress_interval"));
-  const VisualisationSettings v;
+  const VisualisationFramesConfig v;
   CHECK(v.magnification == defaultOf<double>(kSceneSchema, "outputs.visualisation.magnification"));
   CHECK(v.revolve == defaultOf<int>(kSceneSchema, "outputs.visualisation.revolve"));
   CHECK(ContactOptions().both_roles == defaultOf<bool>(kSceneSchema, "contacts[].both_roles"));

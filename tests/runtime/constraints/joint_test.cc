@@ -139,7 +139,7 @@ TEST_CASE("joints: J z is dg/dt and the bias is d2g/dt2 along exact motions", "[
       Joint joint("j", type, ground ? groundEnd({0.2, -0.1, 0.3}) : endOf(a, 0),
                   endOf(b, ground ? 0 : 1));
       const Eigen::Matrix3d E = test::randomRotation(gen);
-      joint.setFrame(E, rotationMatrix(a.sp.data() + 3), rotationMatrix(b.sp.data() + 3));
+      joint.setAxes(E, rotationMatrix(a.sp.data() + 3), rotationMatrix(b.sp.data() + 3));
       JointRows rows;
       joint.evaluate(a.sp.data(), a.sv.data(), b.sp.data(), b.sv.data(), rows);
       const int m = joint.numEquations();
@@ -209,7 +209,7 @@ TEST_CASE("joints: g = 0 when assembled, and zero exactly along the motions each
       b.sp.head<3>() += Ra - markerAt(b, b.sp);
       const Eigen::Matrix3d E = test::randomRotation(gen);
       Joint joint("j", type, ground ? groundEnd(Ra) : endOf(a, 0), endOf(b, ground ? 0 : 1));
-      joint.setFrame(E, rotationMatrix(a.sp.data() + 3), rotationMatrix(b.sp.data() + 3));
+      joint.setAxes(E, rotationMatrix(a.sp.data() + 3), rotationMatrix(b.sp.data() + 3));
       INFO(pairingName(pairing) << " " << jointTypeName(type));
       CHECK(joint.numEquations() == expected[t]);
       auto gOf = [&](const Eigen::VectorXd& spb) {
@@ -296,7 +296,7 @@ TEST_CASE("joint reactions: the load on body b balances its momentum, for every 
       auto joint = std::make_unique<Joint>("j", type, groundEnd(R0), eb);
       const Eigen::Matrix3d E = test::randomRotation(gen);
       const Eigen::Matrix3d A = rotationMatrix(sp.data() + 3);
-      joint->setFrame(E, Eigen::Matrix3d::Identity(), A);
+      joint->setAxes(E, Eigen::Matrix3d::Identity(), A);
       sys.addJoint(std::move(joint));
       Eigen::VectorXd y(sys.size());
       y << sp, sv;
@@ -362,7 +362,7 @@ TEST_CASE("joint reactions: a horizontal rod pendulum at release and a cantileve
     // e3 along y (revolute axis); e1, e2 along z, x.
     Eigen::Matrix3d E;
     E << 0, 1, 0, 0, 0, 1, 1, 0, 0;
-    joint->setFrame(E, Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity());
+    joint->setAxes(E, Eigen::Matrix3d::Identity(), Eigen::Matrix3d::Identity());
     sys.addJoint(std::move(joint));
     Eigen::VectorXd y = Eigen::VectorXd::Zero(sys.size());
     y(0) = L;

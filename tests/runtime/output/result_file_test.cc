@@ -44,8 +44,8 @@ class FallingBody : public MultibodySystem {
   double stop_at_;
 };
 
-SimulationSettings settings() {
-  SimulationSettings s;
+SimulationConfig settings() {
+  SimulationConfig s;
   s.end_time = 0.5;
   s.output_interval = 0.05;
   s.integrator.rtol = 1e-10;
