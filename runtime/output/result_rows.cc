@@ -4,6 +4,22 @@
 
 namespace ffriga {
 
+namespace {
+
+// The group of one joint or force element under `parent`: its kind (attribute `kindKey`:
+// joints say "type", force elements "kind", schemas/result_format.md) and its two ends.
+h5::Handle connectionGroup(ResultFile& file, hid_t parent, const ConnectionLayout& e,
+                           const char* kindKey) {
+  const h5::Context c = file.context();
+  h5::Handle g = file.group(parent, e.name);
+  h5::writeAttribute(c, g.id(), kindKey, e.kind);
+  h5::writeAttribute(c, g.id(), "end_a", e.end_a);
+  h5::writeAttribute(c, g.id(), "end_b", e.end_b);
+  return g;
+}
+
+}  // namespace
+
 ResultRows::ResultRows(ResultFile& file, const OutputLayout& layout) : file_(file) {
   time_ = &file_.series(file_.id(), "time", 0, "s", "output times");
   createBodies(layout);
@@ -74,13 +90,9 @@ void ResultRows::createEnergies() {
 
 void ResultRows::createJoints(const OutputLayout& layout) {
   if (layout.joints.empty()) return;
-  const h5::Context c = file_.context();
   h5::Handle joints = file_.group(file_.id(), "joints");
   for (const ConnectionLayout& joint : layout.joints) {
-    h5::Handle g = file_.group(joints.id(), joint.name);
-    h5::writeAttribute(c, g.id(), "type", joint.kind);
-    h5::writeAttribute(c, g.id(), "end_a", joint.end_a);
-    h5::writeAttribute(c, g.id(), "end_b", joint.end_b);
+    const h5::Handle g = connectionGroup(file_, joints.id(), joint, "type");
     JointSeries s;
     s.force = &file_.series(g.id(), "force", 3, "N",
                             "reaction force of the joint on end b's body, inertial");
@@ -95,13 +107,9 @@ void ResultRows::createJoints(const OutputLayout& layout) {
 
 void ResultRows::createForceElements(const OutputLayout& layout) {
   if (layout.force_elements.empty()) return;
-  const h5::Context c = file_.context();
   h5::Handle forces = file_.group(file_.id(), "force_elements");
   for (const ConnectionLayout& e : layout.force_elements) {
-    h5::Handle g = file_.group(forces.id(), e.name);
-    h5::writeAttribute(c, g.id(), "kind", e.kind);
-    h5::writeAttribute(c, g.id(), "end_a", e.end_a);
-    h5::writeAttribute(c, g.id(), "end_b", e.end_b);
+    const h5::Handle g = connectionGroup(file_, forces.id(), e, "kind");
     ForceElementSeries s;
     s.length = &file_.series(g.id(), "length", 0, "m", "distance between the two points");
     s.rate = &file_.series(g.id(), "rate", 0, "m/s", "rate of change of the length");
