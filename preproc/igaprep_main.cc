@@ -11,11 +11,9 @@
 // (preproc/igaprep_report.h).
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <string>
 
 #include "common/base/cli.h"
-#include "common/base/provenance.h"
 #include "preproc/igaprep_run.h"
 
 namespace {
@@ -95,14 +93,7 @@ int main(int argc, char** argv) {
           if (a == "--max-memory") config.max_memory_gib = parseMaxMemory(av[i + 1]);
           return 2;
         });
-    if (o.help) {
-      std::cout << kUsage;
-      return 0;
-    }
-    if (o.version) {
-      std::cout << ffriga::versionLine("igaprep") << "\n";
-      return 0;
-    }
+    if (ffriga::printHelpOrVersion(o, "igaprep", kUsage)) return 0;
     const ffriga::IgaprepConfig run = runConfig(o, config);
     if (run.info.empty()) ffriga::applyThreads(o.threads);
     return ffriga::IgaprepRun(run).run();

@@ -10,11 +10,9 @@
 // says so.
 #include <cmath>
 #include <cstdlib>
-#include <iostream>
 #include <string>
 
 #include "common/base/cli.h"
-#include "common/base/provenance.h"
 #include "runtime/ffrsim_run.h"
 
 namespace {
@@ -95,14 +93,7 @@ int main(int argc, char** argv) {
           return 2;
         });
     ffriga::applyThreads(o.threads);
-    if (o.help) {
-      std::cout << kUsage;
-      return 0;
-    }
-    if (o.version) {
-      std::cout << ffriga::versionLine("ffrsim") << "\n";
-      return 0;
-    }
+    if (ffriga::printHelpOrVersion(o, "ffrsim", kUsage)) return 0;
     return ffriga::FfrsimRun(runConfig(o, config)).run();
   });
 }

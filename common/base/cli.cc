@@ -5,10 +5,12 @@
 
 #include <omp.h>
 
+#include "common/base/provenance.h"
+
 namespace ffriga {
 
 CommandLineConfig parseCommonOptions(int argc, char** argv,
-                                 const std::function<int(char**, int, int)>& extra) {
+                                     const std::function<int(char**, int, int)>& extra) {
   CommandLineConfig o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -71,6 +73,18 @@ int runProgram(const std::string& program, const std::function<int()>& body) {
     std::cerr << program << ": internal error: " << e.what() << "\n";
     return 1;
   }
+}
+
+bool printHelpOrVersion(const CommandLineConfig& o, const std::string& program, const char* usage) {
+  if (o.help) {
+    std::cout << usage;
+    return true;
+  }
+  if (o.version) {
+    std::cout << versionLine(program) << "\n";
+    return true;
+  }
+  return false;
 }
 
 }  // namespace ffriga

@@ -30,7 +30,7 @@ struct CommandLineConfig {
 // program-specific option: called with (argv, i), it returns how many arguments it used
 // (0 if the option is not its own).
 CommandLineConfig parseCommonOptions(int argc, char** argv,
-                                 const std::function<int(char**, int, int)>& extra = {});
+                                     const std::function<int(char**, int, int)>& extra = {});
 
 // Runs `body`, prints any error as "PROGRAM: error: MESSAGE" on stderr and returns the exit
 // code. Applies --threads to OpenMP.
@@ -38,5 +38,9 @@ int runProgram(const std::string& program, const std::function<int()>& body);
 
 // Applies --threads N (N > 0) to OpenMP.
 void applyThreads(int threads);
+
+// --help prints `usage`, --version the program's version line (both on stdout); true if
+// one of them was given (the program then exits with 0).
+bool printHelpOrVersion(const CommandLineConfig& o, const std::string& program, const char* usage);
 
 }  // namespace ffriga

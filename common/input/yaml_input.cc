@@ -238,7 +238,8 @@ YAML::Node nodeAt(const YamlDocument& doc, const std::string& key) {
     if (key[i] == '.') ++i;
     if (key[i] == '[') {
       const std::size_t close = key.find(']', i);
-      if (close == std::string::npos || !node.IsSequence()) return YAML::Node(YAML::NodeType::Undefined);
+      if (close == std::string::npos || !node.IsSequence())
+        return YAML::Node(YAML::NodeType::Undefined);
       const std::size_t index = std::stoul(key.substr(i + 1, close - i - 1));
       if (index >= node.size()) return YAML::Node(YAML::NodeType::Undefined);
       node.reset(node[index]);
@@ -323,7 +324,8 @@ int getInt(const YamlDocument& doc, const YAML::Node& node, const std::string& k
 bool getBool(const YamlDocument& doc, const YAML::Node& node, const std::string& key) {
   bool v = false;
   if (!node.IsScalar() || !YAML::convert<bool>::decode(node, v)) {
-    throw inputError(doc, node, key, Str() << "expected true or false, found " << describeNode(node));
+    throw inputError(doc, node, key,
+                     Str() << "expected true or false, found " << describeNode(node));
   }
   return v;
 }

@@ -28,6 +28,8 @@ bool parseKind(std::string_view text, ModelKind* model) {
 bool parseKind(std::string_view text, ReductionMethod* method) {
   return parseSpelling(kReductions, text, method);
 }
-bool parseKind(std::string_view text, FrameKind* frame) { return parseSpelling(kFrames, text, frame); }
+bool parseKind(std::string_view text, FrameKind* frame) {
+  return parseSpelling(kFrames, text, frame);
+}
 
 }  // namespace ffriga
