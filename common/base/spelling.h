@@ -7,7 +7,6 @@
 #pragma once
 
 #include <cstddef>
-#include <string>
 #include <string_view>
 
 namespace ffriga {
@@ -36,14 +35,6 @@ bool parseSpelling(const Spelling<E> (&table)[N], std::string_view text, E* valu
     }
   }
   return false;
-}
-
-// The table's words, comma-separated, for messages ("expected one of ...").
-template <class E, std::size_t N>
-std::string spellings(const Spelling<E> (&table)[N]) {
-  std::string out;
-  for (std::size_t i = 0; i < N; ++i) out += (i ? ", " : "") + std::string(table[i].text);
-  return out;
 }
 
 }  // namespace ffriga

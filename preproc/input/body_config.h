@@ -61,7 +61,7 @@ struct DampingBand {
 };
 
 struct ReductionConfig {
-  // Defaults as the schema's (tests/preproc/input/body_defaults_test.cc); they apply to a
+  // Defaults as the schema's (tests/schemas/code_defaults_test.cc); they apply to a
   // body file without a `reduction` block.
   ReductionMethod method = ReductionMethod::kCraigBampton;  // craig_bampton | modal
   int normal_modes = 10;
