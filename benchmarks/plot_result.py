@@ -2,7 +2,7 @@
 """Turns a result file of ffrsim into pictures (PNG), one per question a user asks first:
 
   RESULT_force.png          contact force of every pair over time, with Hertz's force
-                            history where the result has Hertz's values (format 4)
+                            history where the result has Hertz's values (format 4 on)
   RESULT_energy.png         kinetic, elastic, contact, gravity and force-element energy and
                             their sum (what the run kept)
   RESULT_penetration.png    largest penetration of every pair (um)
@@ -15,13 +15,20 @@ from the file (schemas/result_format.md); nothing is recomputed but Hertz's forc
 (m* delta'' = -K delta^(3/2) from the attributes hertz_stiffness_N_m1_5,
 hertz_effective_mass_kg, hertz_approach_speed_m_s, by RK4).
 
-usage: benchmarks/plot_result.py RESULT.h5 [-o DIR] [--zoom]
-  -o DIR   where to write the PNGs (default: beside the result)
-  --zoom   force, penetration and active points over the contact only
+A running result (ffrsim writes it in HDF5's SWMR mode, schemas/result_format.md) is read
+with SWMR: `--follow` redraws the pictures every few seconds from the rows flushed so far
+and stops once the run's status leaves `running` (completed, interrupted or failed); the
+stress lines appear once a contact was seen.
+
+usage: benchmarks/plot_result.py RESULT.h5 [-o DIR] [--zoom] [--follow [SECONDS]]
+  -o DIR            where to write the PNGs (default: beside the result)
+  --zoom            force, penetration and active points over the contact only
+  --follow SECONDS  redraw every SECONDS (default 5) until the run has ended
 """
 import argparse
 import os
 import sys
+import time
 
 import h5py
 import matplotlib
@@ -57,9 +64,21 @@ def hertz_history(k, m, v, n=4000):
     return np.array(ts), np.array(fs)
 
 
+def figure(f, name, default=None):
+    """A figure of the run: the root attribute, or while the run goes (the root's figures
+    are written at its end) the restart record's figure_NAME of the last flush."""
+    if name in f.attrs:
+        return f.attrs[name]
+    record = f["restart"].attrs if "restart" in f else {}
+    return record.get("figure_" + name, default)
+
+
+def text(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
 def contact_window(f, times):
-    a = f.attrs
-    begin, end = float(a.get("contact_begin_s", -1)), float(a.get("contact_end_s", -1))
+    begin, end = float(figure(f, "contact_begin_s", -1)), float(figure(f, "contact_end_s", -1))
     if begin < 0:
         return times[0], times[-1]
     end = end if end >= 0 else times[-1]
@@ -79,18 +98,21 @@ def plot_force(f, t, base, zoom, written):
         return
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for pair in f["contacts"]:
-        ax.plot(1e6 * t, f["contacts"][pair]["normal_force"][:], label=f"ffrsim: {pair}")
+        ax.plot(1e6 * t, f["contacts"][pair]["normal_force"][:len(t)], label=f"ffrsim: {pair}")
     a = f.attrs
     if "hertz_stiffness_N_m1_5" in a:
         th, fh = hertz_history(a["hertz_stiffness_N_m1_5"], a["hertz_effective_mass_kg"],
                                a["hertz_approach_speed_m_s"])
-        t0 = max(float(a["contact_begin_s"]), 0.0)
+        t0 = max(float(figure(f, "contact_begin_s", -1)), 0.0)
         ax.plot(1e6 * (th + t0), fh, "k--", lw=1,
                 label=f"Hertz: {a['hertz_max_force_N']:.2f} N, {1e6 * a['hertz_duration_s']:.2f} us")
-        title = (f"maximum {a['max_contact_force_N']:.3f} N ({100 * a['force_vs_hertz']:+.2f} % "
+        peak = float(figure(f, "max_contact_force_N", 0.0))
+        title = (f"maximum {peak:.3f} N ({100 * (peak / a['hertz_max_force_N'] - 1):+.2f} % "
                  f"from Hertz)")
         if "duration_vs_hertz" in a:
             title += f", duration {100 * a['duration_vs_hertz']:+.2f} %"
+        if text(a.get("status", "")) == "running":
+            title += ", so far"
         ax.set_title(title, fontsize=10)
     if zoom:
         lo, hi = contact_window(f, t)
@@ -110,11 +132,12 @@ def plot_energy(f, t, base, written):
     for name in ("kinetic", "elastic", "contact", "gravity", "force_elements"):
         if name not in f["energy"]:
             continue
-        e = f["energy"][name][:]
+        e = f["energy"][name][:len(t)]
         total = total + e
         if np.any(e != 0):
             ax.plot(1e6 * t, e, label=name)
-    ax.plot(1e6 * t, total, "k", lw=1.5, label=f"sum (change {total[-1] - total[0]:+.3g} J)")
+    if len(t):
+        ax.plot(1e6 * t, total, "k", lw=1.5, label=f"sum (change {total[-1] - total[0]:+.3g} J)")
     ax.set_xlabel("time [us]")
     ax.set_ylabel("energy [J]")
     ax.grid(alpha=0.3)
@@ -127,7 +150,7 @@ def plot_pair_series(f, t, base, zoom, written, name, scale, ylabel, suffix):
         return
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for pair in f["contacts"]:
-        ax.plot(1e6 * t, scale * f["contacts"][pair][name][:], label=pair)
+        ax.plot(1e6 * t, scale * f["contacts"][pair][name][:len(t)], label=pair)
     if zoom:
         lo, hi = contact_window(f, t)
         ax.set_xlim(1e6 * lo, 1e6 * hi)
@@ -139,7 +162,7 @@ def plot_pair_series(f, t, base, zoom, written, name, scale, ylabel, suffix):
 
 
 def plot_stress_lines(f, base, written):
-    if "stress_lines" not in f:
+    if "stress_lines" not in f or f["stress_lines"].attrs["time_s"] < 0:  # no contact yet
         return
     lines = [(b, l) for b in f["stress_lines"] for l in f["stress_lines"][b]]
     if not lines:
@@ -166,17 +189,91 @@ def plot_stress_lines(f, base, written):
     save(fig, base + "_stress_lines.png", written)
 
 
+def open_result(path, swmr):
+    """The result file, read with SWMR if asked (a running result); a file being closed by
+    ffrsim (its final figures, a few milliseconds) is tried again."""
+    for attempt in range(20):
+        try:
+            return h5py.File(path, "r", swmr=swmr)
+        except OSError:
+            if attempt == 19 or not os.path.exists(path):
+                raise
+            time.sleep(0.25)
+
+
+def rows(f):
+    """The output times every series has on disk: a reader of a running result sees each
+    dataset as of the writer's last flush of it, so one may be a flush ahead of another."""
+    n = f["time"].shape[0]
+    for group in ("contacts", "energy"):
+        if group in f:
+            for name, obj in f[group].items():
+                items = obj.values() if isinstance(obj, h5py.Group) else [obj]
+                for d in items:
+                    if isinstance(d, h5py.Dataset) and d.ndim >= 1:
+                        n = min(n, d.shape[0])
+    return f["time"][:n]
+
+
+def draw(f, base, zoom):
+    t = rows(f)
+    written = []
+    plot_force(f, t, base, zoom, written)
+    plot_energy(f, t, base, written)
+    plot_pair_series(f, t, base, zoom, written, "max_penetration", 1e6,
+                     "largest penetration [um]", "_penetration.png")
+    plot_pair_series(f, t, base, zoom, written, "active_points", 1,
+                     "collocation points in contact", "_active_points.png")
+    plot_stress_lines(f, base, written)
+    return t, written
+
+
+def follow(path, base, zoom, interval):
+    """Redraws every `interval` seconds until the status leaves `running`. A reading that
+    fails (the few milliseconds in which ffrsim writes its final figures) is tried again at
+    the next redraw; ten failures in a row end it with the error."""
+    failures = 0
+    while True:
+        try:
+            with open_result(path, swmr=True) as f:
+                status = text(f.attrs.get("status", ""))
+                t, written = draw(f, base, zoom)
+            failures = 0
+        except (OSError, KeyError, RuntimeError) as e:
+            failures += 1
+            if failures == 10:
+                print(f"plot_result.py: {path}: {e}", file=sys.stderr)
+                return 1
+            time.sleep(interval)
+            continue
+        last = f"{t[-1]:.6g} s" if len(t) else "-"
+        print(f"{status}: {len(t)} rows up to t = {last}, {len(written)} pictures", flush=True)
+        if status != "running":
+            for w in written:
+                print(w)
+            return 0
+        time.sleep(interval)
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("result")
     p.add_argument("-o", "--out", help="folder for the PNGs (default: beside the result)")
     p.add_argument("--zoom", action="store_true", help="contact plots over the contact only")
+    p.add_argument("--follow", nargs="?", const=5.0, type=float, metavar="SECONDS",
+                   help="redraw every SECONDS (default 5) until the run has ended")
     args = p.parse_args()
-    try:
-        f = h5py.File(args.result, "r")
-    except OSError as e:
-        print(f"plot_result.py: {args.result}: {e}", file=sys.stderr)
+    if args.follow is not None and not args.follow > 0:
+        print(f"plot_result.py: --follow expects seconds > 0, found {args.follow}", file=sys.stderr)
         return 2
+    try:
+        f = open_result(args.result, swmr=True)
+    except OSError:
+        try:  # files of result format 4 and older are not SWMR files
+            f = h5py.File(args.result, "r")
+        except OSError as e:
+            print(f"plot_result.py: {args.result}: {e}", file=sys.stderr)
+            return 2
     if f.attrs.get("format") not in ("ffriga-result", b"ffriga-result"):
         print(f"plot_result.py: {args.result}: not a result file of ffrsim", file=sys.stderr)
         return 2
@@ -184,16 +281,11 @@ def main():
     folder = args.out or os.path.dirname(os.path.abspath(args.result))
     os.makedirs(folder, exist_ok=True)
     base = os.path.join(folder, stem)
-    t = f["time"][:]
-    written = []
+    if args.follow is not None:
+        f.close()
+        return follow(args.result, base, args.zoom, args.follow)
     with f:
-        plot_force(f, t, base, args.zoom, written)
-        plot_energy(f, t, base, written)
-        plot_pair_series(f, t, base, args.zoom, written, "max_penetration", 1e6,
-                         "largest penetration [um]", "_penetration.png")
-        plot_pair_series(f, t, base, args.zoom, written, "active_points", 1,
-                         "collocation points in contact", "_active_points.png")
-        plot_stress_lines(f, base, written)
+        _, written = draw(f, base, args.zoom)
     for w in written:
         print(w)
     return 0

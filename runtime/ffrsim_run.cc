@@ -58,6 +58,7 @@ int FfrsimRun::run() {
   if (!load()) return 1;
   open();
   attach();
+  writer_->startSwmr();  // every object exists: readers may open the file from now on
   return report(integrate());
 }
 

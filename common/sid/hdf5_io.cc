@@ -4,6 +4,17 @@
 
 namespace ffriga::h5 {
 
+namespace {
+// HDF5's exit handler closes every file still open at exit. A file whose write or close
+// failed (a full disk) is still registered, and closing it a second time there crashes
+// (seen: SIGSEGV in H5F__close_cb after a failed H5Fflush). The programs close their files
+// themselves, so the handler is switched off before the library starts: a file that could
+// not be closed is left to the operating system, and nothing more is written into it.
+const bool kNoExitHandler = H5dont_atexit() >= 0;
+}  // namespace
+
+bool exitHandlerDisabled() { return kNoExitHandler; }
+
 Handle& Handle::operator=(Handle&& o) noexcept {
   if (this != &o) {
     if (id_ >= 0 && close_) close_(id_);
@@ -18,19 +29,48 @@ Handle::~Handle() {
   if (id_ >= 0 && close_) close_(id_);
 }
 
+namespace {
+// The operating system's reason for the failure on top of HDF5's error stack, if one is
+// there (the file drivers record it as "error message = '...'", e.g. "No space left on
+// device" or "File too large"), else "".
+herr_t findSystemError(unsigned, const H5E_error2_t* e, void* data) {
+  auto* reason = static_cast<std::string*>(data);
+  if (!reason->empty() || !e || !e->desc) return 0;
+  const std::string desc = e->desc;
+  const std::string key = "error message = '";
+  const auto at = desc.find(key);
+  if (at == std::string::npos) return 0;
+  const auto end = desc.find('\'', at + key.size());
+  *reason = desc.substr(at + key.size(), end == std::string::npos ? end : end - at - key.size());
+  return 0;
+}
+
+}  // namespace
+
+std::string systemErrorOnStack() {
+  std::string reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, findSystemError, &reason);
+  return reason;
+}
+
 void Context::fail(const std::string& what) const {
   const std::string msg = Str() << file << ": " << what;
   if (reading) throw InputError(msg);
   throw ComputeError(msg);
 }
 
+void Context::failCall(const std::string& what) const {
+  const std::string reason = systemErrorOnStack();
+  fail("HDF5 call failed: " + what + (reason.empty() ? "" : " (" + reason + ")"));
+}
+
 hid_t Context::check(hid_t id, const std::string& what) const {
-  if (id < 0) fail("HDF5 call failed: " + what);
+  if (id < 0) failCall(what);
   return id;
 }
 
 void Context::check(herr_t status, const std::string& what, int) const {
-  if (status < 0) fail("HDF5 call failed: " + what);
+  if (status < 0) failCall(what);
 }
 
 void silenceErrors() {
@@ -232,7 +272,30 @@ void writeAttribute(const Context& c, hid_t obj, const std::string& name, const 
   c.check(H5Awrite(attr, type, &data), "write attribute " + name, 0);
 }
 
+namespace {
+// Writes `v` into an existing scalar attribute `name` of the same class and size as
+// `fileType`, in place; false if there is none (then it is replaced). In place, the object
+// header keeps its size: what a file in SWMR mode allows (runtime/output/result_file.h).
+bool overwriteAttribute(const Context& c, hid_t obj, const std::string& name, hid_t fileType,
+                        hid_t memType, const void* v) {
+  const htri_t exists = H5Aexists(obj, name.c_str());
+  c.check(static_cast<herr_t>(exists), "look up attribute " + name, 0);
+  if (exists <= 0) return false;
+  Handle attr(c.check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "open attribute " + name),
+              H5Aclose);
+  Handle type(c.check(H5Aget_type(attr), "type of attribute " + name), H5Tclose);
+  Handle space(c.check(H5Aget_space(attr), "space of attribute " + name), H5Sclose);
+  if (H5Tget_class(type) != H5Tget_class(fileType) || H5Tget_size(type) != H5Tget_size(fileType) ||
+      H5Sget_simple_extent_type(space) != H5S_SCALAR) {
+    return false;
+  }
+  c.check(H5Awrite(attr, memType, v), "write attribute " + name, 0);
+  return true;
+}
+}  // namespace
+
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, double v) {
+  if (overwriteAttribute(c, obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &v)) return;
   removeAttribute(c, obj, name);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(
@@ -243,6 +306,7 @@ void writeAttribute(const Context& c, hid_t obj, const std::string& name, double
 }
 
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, long v) {
+  if (overwriteAttribute(c, obj, name, H5T_STD_I64LE, H5T_NATIVE_LONG, &v)) return;
   removeAttribute(c, obj, name);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(c.check(H5Acreate2(obj, name.c_str(), H5T_STD_I64LE, space, H5P_DEFAULT, H5P_DEFAULT),
@@ -252,6 +316,7 @@ void writeAttribute(const Context& c, hid_t obj, const std::string& name, long v
 }
 
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, int v) {
+  if (overwriteAttribute(c, obj, name, H5T_STD_I32LE, H5T_NATIVE_INT, &v)) return;
   removeAttribute(c, obj, name);
   Handle space(c.check(H5Screate(H5S_SCALAR), "scalar dataspace"), H5Sclose);
   Handle attr(c.check(H5Acreate2(obj, name.c_str(), H5T_STD_I32LE, space, H5P_DEFAULT, H5P_DEFAULT),

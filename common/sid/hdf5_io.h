@@ -30,6 +30,9 @@ class Handle {
     if (id_ >= 0 && close_) close_(id_);
     id_ = -1;
   }
+  // Forgets the id without closing it (an object of a file whose writes failed: closing it
+  // would write into the file again).
+  void release() { id_ = -1; }
   operator hid_t() const { return id_; }
 
  private:
@@ -42,11 +45,20 @@ struct Context {
   std::string file;
   bool reading = false;
   [[noreturn]] void fail(const std::string& what) const;
+  // fail("HDF5 call failed: <what>"), with the operating system's reason when HDF5 recorded
+  // one (e.g. "(No space left on device)").
+  [[noreturn]] void failCall(const std::string& what) const;
   hid_t check(hid_t id, const std::string& what) const;
   void check(herr_t status, const std::string& what, int) const;
 };
 
 void silenceErrors();
+// The operating system's reason for the last failed HDF5 call, if HDF5 recorded one (e.g.
+// "No space left on device", "Resource temporarily unavailable" for a locked file), else "".
+std::string systemErrorOnStack();
+// Whether HDF5's exit handler was switched off before the library started (hdf5_io.cc: a
+// file whose close failed must not be closed again at exit).
+bool exitHandlerDisabled();
 
 Handle createGroup(const Context& c, hid_t parent, const std::string& name);
 Handle openGroup(const Context& c, hid_t parent, const std::string& name);
@@ -75,7 +87,8 @@ double readScalar(const Context& c, hid_t parent, const std::string& name);
 std::vector<double> readArray(const Context& c, hid_t parent, const std::string& name,
                               std::vector<hsize_t>* dims);
 
-// Attributes are written as scalars, replacing an attribute of the same name.
+// Attributes are written as scalars, replacing an attribute of the same name (numbers into
+// an attribute of the same type in place, which a file in SWMR mode allows).
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, const std::string& v);
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, double v);
 void writeAttribute(const Context& c, hid_t obj, const std::string& name, int v);

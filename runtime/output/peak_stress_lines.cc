@@ -58,9 +58,16 @@ PeakStressLines::PeakStressLines(ResultFile& file, const OutputLayout& layout,
       line.distance.resize(P.rows());
       for (Eigen::Index i = 0; i < P.rows(); ++i)
         line.distance(i) = (P.row(i).transpose() - sl.from).norm();
+      line.stress.setZero(P.rows(), 6);
+      line.von_mises.setZero(P.rows());
       lines_.push_back(std::move(line));
     }
   }
+  if (lines_.empty()) return;
+  if (file_.appending() && h5::exists(file_.id(), "stress_lines"))
+    restore();
+  else
+    create();
 }
 
 void PeakStressLines::recordPeak(double t, double force, const std::vector<BodySample>& bodies) {
@@ -83,25 +90,19 @@ void PeakStressLines::recordPeak(double t, double force, const std::vector<BodyS
   }
 }
 
-void PeakStressLines::flush() {
-  if (!pending_) return;
-  pending_ = false;
+// /stress_lines with every dataset and attribute a flush writes, before any peak (time_s
+// -1): in SWMR mode a flush only writes in place (runtime/output/result_file.h).
+void PeakStressLines::create() {
   const h5::Context c = file_.context();
-  const hid_t file = file_.id();
-  if (h5::exists(file, "stress_lines")) {
-    c.check(H5Ldelete(file, "stress_lines", H5P_DEFAULT), "replace /stress_lines", 0);
-  }
-  Handle root = h5::createGroup(c, file, "stress_lines");
-  h5::writeAttribute(c, root.id(), "time_s", time_);
-  h5::writeAttribute(c, root.id(), "contact_force_N", force_);
+  Handle root = h5::createGroup(c, file_.id(), "stress_lines");
+  h5::writeAttribute(c, root.id(), "time_s", -1.0);
+  h5::writeAttribute(c, root.id(), "contact_force_N", 0.0);
   h5::writeAttribute(c, root.id(), "description",
                      std::string("stresses along the SIDs' stress lines at the step of the "
-                                 "largest contact force"));
-  const std::vector<StressLinePeak> summary = peaks();
-  for (std::size_t k = 0; k < lines_.size(); ++k) {
-    const Line& line = lines_[k];
-    const StressLinePeak& peak = summary[k];
-    const StressLine& sl = (*line.source);
+                                 "largest contact force (time_s -1: no contact yet)"));
+  const double nan = std::nan("");
+  for (const Line& line : lines_) {
+    const StressLine& sl = *line.source;
     Handle bg = h5::exists(root.id(), line.body_name) ? h5::openGroup(c, root.id(), line.body_name)
                                                        : h5::createGroup(c, root.id(), line.body_name);
     Handle g = h5::createGroup(c, bg.id(), sl.name);
@@ -111,6 +112,62 @@ void PeakStressLines::flush() {
     h5::writeVector(c, g.id(), "distance", line.distance, "m");
     h5::writeMatrix(c, g.id(), "stress", line.stress, "Pa");
     h5::writeVector(c, g.id(), "von_mises", line.von_mises, "Pa");
+    for (const char* a : {"von_mises_max_Pa", "von_mises_max_distance_m",
+                          "von_mises_interior_max_Pa", "von_mises_interior_max_distance_m"})
+      h5::writeAttribute(c, g.id(), a, nan);
+    if (!line.hertz) continue;
+    const Eigen::VectorXd none = Eigen::VectorXd::Constant(line.distance.size(), nan);
+    for (const char* d : {"hertz_von_mises", "hertz_sigma_radial", "hertz_sigma_axial"})
+      h5::writeVector(c, g.id(), d, none, "Pa");
+    for (const char* a : {"hertz_contact_radius_m", "hertz_max_pressure_Pa",
+                          "hertz_von_mises_max_Pa", "hertz_von_mises_max_depth_m"})
+      h5::writeAttribute(c, g.id(), a, nan);
+  }
+}
+
+// A restart: the peak the run had recorded before (time_s -1: none).
+void PeakStressLines::restore() {
+  const h5::Context c = file_.context();
+  Handle root = h5::openGroup(c, file_.id(), "stress_lines");
+  time_ = h5::readDoubleAttribute(c, root.id(), "time_s");
+  force_ = h5::readDoubleAttribute(c, root.id(), "contact_force_N");
+  for (Line& line : lines_) {
+    Handle g = h5::openGroup(c, root.id(), line.body_name + "/" + line.source->name);
+    const Eigen::MatrixXd stress = h5::readMatrix(c, g.id(), "stress");
+    const Eigen::VectorXd von_mises = h5::readVector(c, g.id(), "von_mises");
+    if (stress.rows() != line.stress.rows() || von_mises.size() != line.von_mises.size())
+      c.fail("/stress_lines/" + line.body_name + "/" + line.source->name + " has another size");
+    line.stress = stress;
+    line.von_mises = von_mises;
+  }
+}
+
+namespace {
+// Writes a whole dataset of the file in place (row-major, as h5::writeMatrix stores it).
+void overwrite(const h5::Context& c, hid_t group, const std::string& name,
+               const Eigen::MatrixXd& m) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajor r = m;
+  Handle set(c.check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  c.check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
+          "write " + name, 0);
+}
+}  // namespace
+
+void PeakStressLines::flush() {
+  if (!pending_) return;
+  pending_ = false;
+  const h5::Context c = file_.context();
+  Handle root = h5::openGroup(c, file_.id(), "stress_lines");
+  h5::writeAttribute(c, root.id(), "time_s", time_);
+  h5::writeAttribute(c, root.id(), "contact_force_N", force_);
+  const std::vector<StressLinePeak> summary = peaks();
+  for (std::size_t k = 0; k < lines_.size(); ++k) {
+    const Line& line = lines_[k];
+    const StressLinePeak& peak = summary[k];
+    Handle g = h5::openGroup(c, root.id(), line.body_name + "/" + line.source->name);
+    overwrite(c, g.id(), "stress", line.stress);
+    overwrite(c, g.id(), "von_mises", line.von_mises);
     const Eigen::Index at = argMax(line.von_mises);
     h5::writeAttribute(c, g.id(), "von_mises_max_Pa", line.von_mises(at));
     h5::writeAttribute(c, g.id(), "von_mises_max_distance_m", line.distance(at));
@@ -126,14 +183,18 @@ void PeakStressLines::flush() {
           hertzAxisStress(line.distance(i), patch.radius, patch.max_pressure, nu);
       vm(i) = h.von_mises, sr(i) = h.sigma_r, sz(i) = h.sigma_z;
     }
-    h5::writeVector(c, g.id(), "hertz_von_mises", vm, "Pa");
-    h5::writeVector(c, g.id(), "hertz_sigma_radial", sr, "Pa");
-    h5::writeVector(c, g.id(), "hertz_sigma_axial", sz, "Pa");
+    overwrite(c, g.id(), "hertz_von_mises", vm);
+    overwrite(c, g.id(), "hertz_sigma_radial", sr);
+    overwrite(c, g.id(), "hertz_sigma_axial", sz);
     h5::writeAttribute(c, g.id(), "hertz_contact_radius_m", patch.radius);
     h5::writeAttribute(c, g.id(), "hertz_max_pressure_Pa", patch.max_pressure);
     h5::writeAttribute(c, g.id(), "hertz_von_mises_max_Pa", peak.hertz_von_mises);
     h5::writeAttribute(c, g.id(), "hertz_von_mises_max_depth_m", peak.hertz_depth);
   }
+}
+
+void PeakStressLines::finish() {
+  if (time_ < 0.0) file_.removeObject("/stress_lines");  // no contact: no group, as documented
 }
 
 std::vector<StressLinePeak> PeakStressLines::peaks() const {

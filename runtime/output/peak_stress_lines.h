@@ -4,7 +4,8 @@
 // contact pair and the line starts on its surface and points at its centre. Recovered from
 // the reduced model as sigma = S q (S: the SID's stress modes), so exact for it. Written to
 // the result file as /stress_lines/<body>/<line> (schemas/result_format.md) whenever a
-// larger force was seen since the last write, at the result file's flushes.
+// larger force was seen since the last write, at the result file's flushes; a restart keeps
+// the peak recorded before it.
 #pragma once
 
 #include <optional>
@@ -44,8 +45,11 @@ class PeakStressLines : public OutputSink {
   // stresses.
   void recordPeak(double t, double force, const std::vector<BodySample>& bodies) override;
   bool wantsPeaks() const override { return !lines_.empty(); }
-  // Writes /stress_lines if something was recorded since the last write.
+  // Writes /stress_lines if something was recorded since the last write (in place: the
+  // group is created with the sink, before the file's SWMR mode).
   void flush() override;
+  // Without any peak the group is removed at close.
+  void finish() override;
   // Every line's interior maximum at the last recorded peak (empty before any record).
   std::vector<StressLinePeak> peaks() const;
 
@@ -59,6 +63,8 @@ class PeakStressLines : public OutputSink {
     Eigen::MatrixXd stress;        // n x 6, Pa
     Eigen::VectorXd von_mises;     // Pa
   };
+  void create();
+  void restore();
   ResultFile& file_;
   std::vector<Line> lines_;
   double time_ = -1.0, force_ = 0.0;

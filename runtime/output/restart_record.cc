@@ -5,6 +5,7 @@
 #include "common/base/error.h"
 #include "common/sid/hdf5_io.h"
 #include "common/input/yaml_overrides.h"
+#include "runtime/output/run_figures.h"
 
 namespace ffriga {
 
@@ -28,6 +29,11 @@ RestartRecordWriter::RestartRecordWriter(ResultFile& file, int state_size, long 
   h5::writeAttribute(c, state_.id(), "description",
                      std::string("full state vector y at the last row on disk (the layout of "
                                  "MultibodySystem: positions, then velocities)"));
+  // Every attribute a flush writes exists from the start: in SWMR mode they are written in
+  // place (runtime/output/result_file.h).
+  h5::writeAttribute(c, group_.id(), "time_s", 0.0);
+  for (const auto& [name, value] : restartFigures(RunFigures{}, 0, 0.0))
+    h5::writeAttribute(c, group_.id(), "figure_" + name, value);
   h5::writeAttribute(c, group_.id(), "rows", 0.0);
 }
 
@@ -53,7 +59,9 @@ void RestartRecordWriter::flush() {
 RestartRecord readRestartRecord(const std::string& path) {
   h5::silenceErrors();
   const h5::Context c{path, true};
-  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  // A run killed in SWMR mode left the "open for writing" mark: SWMR readers still open it.
+  if (f < 0) f = H5Fopen(path.c_str(), H5F_ACC_RDONLY | H5F_ACC_SWMR_READ, H5P_DEFAULT);
   if (f < 0) throw InputError(Str() << path << ": cannot open as an HDF5 result file");
   h5::Handle file(f, H5Fclose);
   if (!H5Aexists(f, "format") || h5::readStringAttribute(c, f, "format") != kResultFormat) {

@@ -45,6 +45,7 @@ class RestartRecordWriter : public OutputSink {
   void setFigures(const std::map<std::string, double>& figures) { figures_ = figures; }
   // The record is written again at the next flush (with the figures set since).
   void markPending() { pending_ = rows_ > 0; }
+  void abandon() override { group_.release(), state_.release(); }
 
  private:
   ResultFile& file_;

@@ -1,6 +1,7 @@
 #include "runtime/output/result_file.h"
 
 #include <algorithm>
+#include <cstdint>
 
 #include "common/base/error.h"
 
@@ -15,16 +16,57 @@ hid_t check(hid_t status, const std::string& what, const std::string& file) {
 }
 }  // namespace
 
+namespace {
+
+// File access: the latest file format (SWMR needs it); for a restart also the clearing of
+// the "open for writing" mark a killed run leaves (the property h5clear -s sets; safe here,
+// under the writer lock: no other ffrsim writes the file). Without `locking`, HDF5 does not
+// lock the file (its readers hold shared locks; the writer lock guards the writers).
+Handle fileAccess(const std::string& path, bool clear_mark, bool locking = true) {
+  Handle fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate", path), H5Pclose);
+  check(H5Pset_libver_bounds(fapl.id(), H5F_LIBVER_LATEST, H5F_LIBVER_LATEST),
+        "H5Pset_libver_bounds", path);
+  if (!locking) check(H5Pset_file_locking(fapl.id(), 0, 1), "H5Pset_file_locking", path);
+  if (clear_mark && H5Pexist(fapl.id(), "clear_status_flags") > 0) {
+    hbool_t clear = 1;
+    check(H5Pset(fapl.id(), "clear_status_flags", &clear), "H5Pset clear_status_flags", path);
+  }
+  return fapl;
+}
+
+// Bytes a flush of the pending rows adds to a series of `written` rows: the chunks (256
+// rows, allocated whole when first written) that it starts.
+std::uint64_t chunkBytes(long written, std::size_t pending_values, int width) {
+  if (pending_values == 0) return 0;
+  const long rows = static_cast<long>(pending_values) / width;
+  const long chunks = (written + rows + 255) / 256 - (written + 255) / 256;
+  return static_cast<std::uint64_t>(chunks) * 256u * static_cast<std::uint64_t>(width) * 8u;
+}
+
+// Room for what is written besides the chunks: metadata of the grown datasets (chunk
+// indexes, object headers), the final attributes and the close (a few kB; the growth
+// beyond the estimates is measured and added, ResultFile::measureGrowth).
+constexpr std::uint64_t kSlackBytes = std::uint64_t{256} << 10;
+
+}  // namespace
+
 ResultFile::ResultFile(const std::string& path, bool appending)
     : path_(path), appending_(appending) {
   h5::silenceErrors();
-  const hid_t f = appending_ ? H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT)
-                             : H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  lock_ = std::make_unique<WriterLock>(path);  // before HDF5 touches the file
+  Handle fapl = fileAccess(path_, appending_);
+  const hid_t f = appending_ ? H5Fopen(path.c_str(), H5F_ACC_RDWR, fapl.id())
+                             : H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.id());
   if (f < 0) {
+    const std::string reason = h5::systemErrorOnStack();
     throw InputError(Str() << path << ": cannot " << (appending_ ? "open" : "create")
-                           << " the result file");
+                           << " the result file"
+                           << (reason.empty() ? "" : " (" + reason + "; is it open in another "
+                                                         "program?)"));
   }
   file_ = Handle(f, H5Fclose);
+  lock_->acquire();  // HDF5 may have opened and closed descriptors of the file
+  space_ = std::make_unique<DiskReservation>(path_, lock_->descriptor());
 }
 
 ResultFile::~ResultFile() {
@@ -124,33 +166,144 @@ void ResultFile::writeRows(long rows) {
 
 void ResultFile::flushFile() { check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_); }
 
+std::uint64_t ResultFile::pendingBytes() const {
+  std::uint64_t bytes = 0;
+  for (const auto& s : series_) bytes += chunkBytes(written_, s->pending_.size(), s->width());
+  return bytes;
+}
+
+std::uint64_t ResultFile::endOfFile() const {
+  haddr_t eoa = 0;
+  const std::uint64_t size = space_->fileSize();
+  if (H5Fget_eoa(file_.id(), &eoa) < 0) return size;
+  return std::max<std::uint64_t>(size, eoa);
+}
+
+void ResultFile::reserve(std::uint64_t more) {
+  const std::uint64_t growth = pendingBytes() + more;
+  const std::uint64_t end = endOfFile();
+  estimate_end_ = end + growth;
+  space_->ensure(end + growth + overshoot_ + kSlackBytes);
+}
+
+void ResultFile::measureGrowth() {
+  const std::uint64_t end = endOfFile();
+  if (estimate_end_ > 0 && end > estimate_end_) overshoot_ = std::max(overshoot_, end - estimate_end_);
+}
+
+void ResultFile::startSwmr() {
+  if (swmr_) return;
+  check(H5Fstart_swmr_write(file_.id()), "H5Fstart_swmr_write", path_);
+  swmr_ = true;
+}
+
+void ResultFile::apply(const Deferred& d) {
+  const h5::Context c = context();
+  if (d.name.empty()) {
+    if (h5::exists(file_.id(), d.object))
+      c.check(H5Ldelete(file_.id(), d.object.c_str(), H5P_DEFAULT), "remove " + d.object, 0);
+    return;
+  }
+  Handle o(c.check(H5Oopen(file_.id(), d.object.c_str(), H5P_DEFAULT), "open " + d.object),
+           H5Oclose);
+  switch (d.kind) {
+    case Deferred::Kind::kString: h5::writeAttribute(c, o.id(), d.name, d.text); break;
+    case Deferred::Kind::kDouble: h5::writeAttribute(c, o.id(), d.name, d.number); break;
+    case Deferred::Kind::kLong: h5::writeAttribute(c, o.id(), d.name, d.integer); break;
+  }
+}
+
 void ResultFile::setAttribute(const std::string& name, const std::string& value) {
-  h5::writeAttribute(context(), file_.id(), name, value);
+  setObjectAttribute("/", name, value);
 }
 void ResultFile::setAttribute(const std::string& name, double value) {
-  h5::writeAttribute(context(), file_.id(), name, value);
+  setObjectAttribute("/", name, value);
 }
 void ResultFile::setAttribute(const std::string& name, long value) {
-  h5::writeAttribute(context(), file_.id(), name, value);
+  Deferred d{"/", name, Deferred::Kind::kLong, "", 0.0, value};
+  if (swmr_)
+    deferred_.push_back(d);
+  else
+    apply(d);
 }
 
 void ResultFile::setObjectAttribute(const std::string& object, const std::string& name,
                                     double value) {
-  const h5::Context c = context();
-  Handle o(c.check(H5Oopen(file_.id(), object.c_str(), H5P_DEFAULT), "open " + object), H5Oclose);
-  h5::writeAttribute(c, o.id(), name, value);
+  Deferred d{object, name, Deferred::Kind::kDouble, "", value, 0};
+  if (swmr_)
+    deferred_.push_back(d);
+  else
+    apply(d);
 }
 void ResultFile::setObjectAttribute(const std::string& object, const std::string& name,
                                     const std::string& value) {
-  const h5::Context c = context();
-  Handle o(c.check(H5Oopen(file_.id(), object.c_str(), H5P_DEFAULT), "open " + object), H5Oclose);
-  h5::writeAttribute(c, o.id(), name, value);
+  Deferred d{object, name, Deferred::Kind::kString, value, 0.0, 0};
+  if (swmr_)
+    deferred_.push_back(d);
+  else
+    apply(d);
+}
+
+void ResultFile::removeObject(const std::string& object) {
+  Deferred d{object, "", Deferred::Kind::kString, "", 0.0, 0};
+  if (swmr_)
+    deferred_.push_back(d);
+  else
+    apply(d);
+}
+
+// The SWMR file closed, the file is opened again without SWMR for what SWMR mode does not
+// allow (new attributes, strings, removals), for a few milliseconds. Readers may have it
+// open (with shared HDF5 locks): it is opened without HDF5's lock; a reader that opens it
+// in these milliseconds is refused ("already open for write") and tries again.
+void ResultFile::reopenForClosing() {
+  Handle fapl = fileAccess(path_, false, false);
+  file_ = Handle(check(H5Fopen(path_.c_str(), H5F_ACC_RDWR, fapl.id()),
+                       "H5Fopen (to write the run's final attributes)", path_),
+                 H5Fclose);
+  lock_->acquire();  // closing HDF5's descriptor dropped the record lock
+  swmr_ = false;
 }
 
 void ResultFile::close() {
   if (file_.id() < 0) return;
+  if (broken_) {  // closing would write into a file whose writes failed
+    for (auto& s : series_) s->dataset_.release();
+    series_.clear();
+    file_.release();
+    return;
+  }
   series_.clear();
-  file_.reset();
+  const bool reopen = swmr_ && !deferred_.empty();
+  const hid_t id = file_.id();
+  file_.release();
+  if (H5Fclose(id) < 0) {  // not closed again: HDF5 keeps what it could not write
+    broken_ = true;
+    h5::Context{path_}.failCall("H5Fclose");
+  }
+  if (reopen) {
+    reopenForClosing();
+    std::vector<Deferred> pending = std::move(deferred_);
+    deferred_.clear();
+    // The status last: once it leaves "running", the run's figures are there.
+    std::stable_partition(pending.begin(), pending.end(), [](const Deferred& d) {
+      return !(d.object == "/" && d.name == "status");
+    });
+    try {
+      for (const Deferred& d : pending) apply(d);
+    } catch (...) {
+      broken_ = true;
+      file_.release();
+      throw;
+    }
+    const hid_t again = file_.id();
+    file_.release();
+    if (H5Fclose(again) < 0) {
+      broken_ = true;
+      h5::Context{path_}.failCall("H5Fclose");
+    }
+  }
+  space_->release();
 }
 
 }  // namespace ffriga

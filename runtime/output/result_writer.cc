@@ -1,5 +1,7 @@
 #include "runtime/output/result_writer.h"
 
+#include <exception>
+
 #include "common/base/error.h"
 #include "runtime/output/result_rows.h"
 #include "runtime/output/sensor_rows.h"
@@ -32,7 +34,12 @@ ResultWriter::ResultWriter(const std::string& path, const OutputLayout& layout,
   auto restart = std::make_unique<RestartRecordWriter>(*file_, layout.state_size, rows_);
   restart_ = restart.get();
   sinks_.push_back(std::move(restart));
-  flush();
+  try {
+    flush();
+  } catch (const ComputeError& e) {  // no room for even the first flush
+    if (file_->writable()) file_->setAttribute("status", std::string("failed: ") + e.what());
+    throw;
+  }
 }
 
 ResultWriter::~ResultWriter() {
@@ -77,12 +84,31 @@ void ResultWriter::flushIfDue() {
 }
 
 void ResultWriter::flush() {
-  if (!file_->open()) return;
-  file_->writeRows(rows_);
-  for (auto& sink : sinks_) sink->flush();
-  file_->flushFile();
+  if (!file_->writable() || refused_) return;
+  std::uint64_t more = 0;
+  for (const auto& sink : sinks_) more += sink->pendingBytes();
+  try {
+    file_->reserve(more);
+  } catch (const ComputeError&) {
+    refused_ = true;  // nothing was written: the file is as the last flush left it
+    throw;
+  }
+  try {
+    file_->writeRows(rows_);
+    for (auto& sink : sinks_) sink->flush();
+    file_->flushFile();
+  } catch (...) {
+    file_->markBroken();
+    throw;
+  }
+  file_->measureGrowth();
   for (auto& sink : sinks_) sink->afterFlush();  // the XDMF file refers to frames on disk
   last_flush_ = std::chrono::steady_clock::now();
+}
+
+void ResultWriter::startSwmr() {
+  flush();
+  file_->startSwmr();
 }
 
 void ResultWriter::close() {
@@ -91,12 +117,26 @@ void ResultWriter::close() {
   // last row wrote the figures of the step before, and whether one happened depends on the
   // machine's speed (same input, same bits).
   restart_->markPending();
-  flush();
+  std::exception_ptr failure;
+  if (file_->writable() && !refused_) {
+    try {
+      flush();
+    } catch (const std::exception& e) {
+      failure = std::current_exception();
+      if (file_->writable()) file_->setAttribute("status", std::string("failed: ") + e.what());
+    }
+  }
   if (frames_) frames_written_ = frames_->frames();
   if (peaks_) peak_list_ = peaks_->peaks();
   frames_ = nullptr, peaks_ = nullptr, restart_ = nullptr;
+  if (file_->writable()) {
+    for (auto& sink : sinks_) sink->finish();
+  } else {
+    for (auto& sink : sinks_) sink->abandon();
+  }
   sinks_.clear();  // their datasets before the file
   file_->close();
+  if (failure) std::rethrow_exception(failure);
 }
 
 }  // namespace ffriga

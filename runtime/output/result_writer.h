@@ -56,7 +56,14 @@ class ResultWriter {
   void recordPeak(double t, double force, const std::vector<BodySample>& bodies);
   // One output row.
   void append(const OutputSample& sample);
+  // Writes the pending rows and flushes the file. First reserves their room on disk: if the
+  // disk or the file size limit has none, ComputeError, and the file keeps the rows of the
+  // last flush (no later flush is tried; close() still writes the status). A write that
+  // fails anyway marks the file broken (runtime/output/result_file.h).
   void flush();
+  // Every object of the run exists (after enableFrames and enablePeakStressLines): the file
+  // goes into SWMR mode, readable while it grows (schemas/result_format.md).
+  void startSwmr();
   // Flushes if rows are pending and the last flush is flush_interval or more seconds ago.
   void flushIfDue();
   // The run's figures so far (runtime/output/run_figures.h restartFigures): written to the
@@ -85,6 +92,7 @@ class ResultWriter {
   double restart_time_ = -1.0;  // the record's time when opened for a restart
   long rows_ = 0;
   long frames_written_ = 0;
+  bool refused_ = false;  // a flush found no room: the rows after the last flush stay in memory
   std::vector<StressLinePeak> peak_list_;
   FlushConfig flush_;
   std::chrono::steady_clock::time_point last_flush_;

@@ -239,6 +239,21 @@ void FrameWriter::write(const OutputSample& sample) {
   }
 }
 
+std::uint64_t FrameWriter::pendingBytes() const {
+  std::uint64_t bytes = 8 * (times_.size() - static_cast<std::size_t>(written_)) + 8 * 256;
+  for (const auto& b : bodies_) {
+    bytes += sizeof(float) * (b->pending_points.size() + b->pending_displacement.size() +
+                              b->pending_von_mises.size());
+  }
+  return bytes;
+}
+
+void FrameWriter::abandon() {
+  group_.release(), time_.release();
+  for (auto& b : bodies_) b->group.release(), b->points.release(), b->displacement.release(),
+                          b->von_mises.release();
+}
+
 void FrameWriter::flush() {
   const h5::Context c{path_};
   const long count = static_cast<long>(times_.size()) - written_;

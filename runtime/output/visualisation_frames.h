@@ -21,6 +21,7 @@
 // dropped like the rows.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -56,6 +57,9 @@ class FrameWriter : public OutputSink {
   void write(const OutputSample& sample) override;
   // Writes pending frames to the HDF5 file.
   void flush() override;
+  // Their bytes (one chunk per frame and dataset).
+  std::uint64_t pendingBytes() const override;
+  void abandon() override;
   // Rewrites the XDMF file for the frames on disk.
   void afterFlush() override { writeXdmf(); }
   void writeXdmf() const;

@@ -68,7 +68,8 @@ def interrupted(scene, result, end_time, fraction, sig):
     if os.path.exists(result):
         os.remove(result)
     signal_at_fraction([ffrsim, "-v", scene, "-o", result], end_time, fraction, sig)
-    with h5py.File(result, "r") as f:
+    # A killed run's file keeps HDF5's "open for writing" mark: read with SWMR.
+    with h5py.File(result, "r", swmr=sig == signal.SIGKILL) as f:
         return attr(f, "status"), float(f["restart"].attrs["time_s"])
 
 
@@ -117,9 +118,9 @@ reference(scene, ref)
 part = os.path.join(out, "impact_restarted.h5")
 fraction = rng.uniform(0.3, 0.8)
 status, t_record = interrupted(scene, part, 1e-4, fraction, signal.SIGKILL)
-with h5py.File(part, "r") as f:
+with h5py.File(part, "r", swmr=True) as f:
     rows_before = int(f["restart"].attrs["rows"])
-r = restart(part)
+r = restart(part)  # clears the mark (no ffrsim holds the writer lock any more)
 with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
     ta, tb = a["time"][()], b["time"][()]
     fa = a["contacts/impact/normal_force"][()]

@@ -5,10 +5,11 @@ too large to matter):
     progress lines, so that the moment is inside the run on any machine): exit code 1, the file opens, its status says
     which signal and when, and it holds every row up to then, equal bit for bit to the rows
     of the uninterrupted run (same input, same bits);
-  * SIGKILL at a random moment: the file opens (status still `running`), its rows are a
-    prefix of the uninterrupted run's, and it holds every row that had been computed one
-    flush interval (plus 0.5 s of margin for a slow step) before the kill, as told by the
-    progress lines on stderr;
+  * SIGKILL at a random moment: the file opens with SWMR (h5py's swmr=True; status still
+    `running`), its rows are a prefix of the uninterrupted run's, and it holds every row that
+    had been computed one flush interval (plus 0.5 s of margin for a slow step) before the
+    kill, as told by the progress lines on stderr; a reader without SWMR is refused with
+    HDF5's "already open for write" (the mark of a file killed in SWMR mode, README);
   * SIGTERM while loading (sent before ffrsim starts, with the signal blocked by the
     launcher: it is pending until ffrsim installs its handler): exit code 1 and a message.
 The random moments are printed (seeded from the clock).
@@ -46,8 +47,8 @@ with open(scene, "w") as f:
     f.write(text)
 
 
-def rows_of(path):
-    with h5py.File(path, "r") as f:
+def rows_of(path, swmr=False):
+    with h5py.File(path, "r", swmr=swmr) as f:
         status = f.attrs["status"]
         status = status.decode() if isinstance(status, bytes) else status
         return status, f["time"][()], f["contacts/impact/normal_force"][()]
@@ -82,7 +83,7 @@ for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGKILL):
     result = os.path.join(out, f"{name}.h5")
     fraction = rng.uniform(0.4 if sig == signal.SIGKILL else 0.1, 0.8)  # a kill after > 3 s
     rc, lines = signal_at_fraction([ffrsim, "-v", scene, "-o", result], 1e-4, fraction, sig)
-    status, t, f = rows_of(result)
+    status, t, f = rows_of(result, swmr=sig == signal.SIGKILL)
     moment = f"at {100 * fraction:.0f} % of the run"
     if sig != signal.SIGKILL:
         m = re.match(rf"interrupted by {name} at t = ([0-9.e+-]+) s", status)
@@ -102,6 +103,14 @@ for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGKILL):
               f"SIGKILL {moment}: status '{status}', {len(t)} rows up to t = {t[-1]:.6g} s, at "
               f"least up to {needed:.6g} s (computed {FLUSH_INTERVAL} + 0.5 s before the kill)")
     prefix_of_reference(t, f, name)
+    if sig == signal.SIGKILL:
+        try:
+            h5py.File(result, "r").close()
+            refused = "opened"
+        except OSError as e:
+            refused = str(e)
+        check("already open for write" in refused,
+              f"SIGKILL: a reader without SWMR is refused: {refused}")
 
 
 # SIGTERM before ffrsim runs: blocked by the launcher, pending, delivered at the handler.

@@ -4,11 +4,15 @@ and result file bit for bit (same_bits.py: every dataset and attribute, except t
 git revision and the files' paths), and the XDMF files beside the results as text.
 
 usage: compare_builds.py OLD_BIN NEW_BIN SOURCE_DIR OUT_DIR [--paper] [--reuse-old]
+                         [--allow ITEM]...
 
 OLD_BIN, NEW_BIN: folders holding igaprep and ffrsim (e.g. a worktree's build/bin).
 --paper adds the paper-scale 3D model sphere3d_h3 and its impact (about 1 min each build)
 and the flexible double pendulums of Sect. 7 (about 40 s each build).
 --reuse-old keeps the old build's files from an earlier invocation into the same OUT_DIR.
+--allow ITEM: an item that may differ (a path as the differences name it, e.g.
+"/@format_version" for a new result format version), left out of the comparison and
+named in the output.
 
 Exit code 0 when every pair is equal. Build an old revision beside the checkout with
   git worktree add /tmp/old REV && cmake -S /tmp/old -B /tmp/old/build && cmake --build /tmp/old/build
@@ -38,6 +42,7 @@ parser.add_argument("source")
 parser.add_argument("out")
 parser.add_argument("--paper", action="store_true")
 parser.add_argument("--reuse-old", action="store_true")
+parser.add_argument("--allow", action="append", default=[])
 args = parser.parse_args()
 check = Checks()
 bodies = QUICK_BODIES + (PAPER_BODIES if args.paper else [])
@@ -69,8 +74,10 @@ def produce(build, bin_dir):
 old = produce("old", args.old_bin)
 new = produce("new", args.new_bin)
 for name in [b + ".sid.h5" for b in bodies] + [s + ".h5" for s in scenes]:
-    n, differ = differences(os.path.join(old, name), os.path.join(new, name), builds=True)
+    n, differ = differences(os.path.join(old, name), os.path.join(new, name), builds=True,
+                            ignore=args.allow)
     check(not differ and n > 0, f"{name}: {n} datasets and attributes equal bit for bit"
+          + (f" (allowed to differ: {', '.join(args.allow)})" if args.allow else "")
           + (f"; differ: {', '.join(differ[:8])}" if differ else ""))
     xdmf = [os.path.join(d, name[:-3] + ".xdmf") for d in (old, new)]
     if any(os.path.exists(x) for x in xdmf):

@@ -1,7 +1,12 @@
+#include <sys/resource.h>
+
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 
 #include <catch2/catch.hpp>
 
+#include "common/base/error.h"
 #include "runtime/bodies/floating_body.h"
 #include "runtime/output/result_writer.h"
 #include "runtime/simulation/output_sampler.h"
@@ -114,5 +119,64 @@ TEST_CASE("result file: an interrupted run leaves a readable file", "[result]") 
   REQUIRE(t.rows() >= 4);  // outputs up to ~0.2 s
   REQUIRE(t.rows() < 11);  // but not the whole run
   REQUIRE(readDataset(f.id(), "bodies/ball/position").rows() == t.rows());
+  std::remove(path.c_str());
+}
+
+TEST_CASE("result file: SWMR mode keeps the final attributes for the close", "[result]") {
+  const std::string path = "result_swmr_test.h5";
+  FallingBody sys(1e9);
+  {
+    ResultWriter w(path, outputLayout(sys), "unit test", "", FlushConfig{});
+    w.startSwmr();
+    REQUIRE(w.file().swmr());
+    const SimulationReport r = simulate(sys, initialState(), settings(), w);
+    REQUIRE(r.completed);
+    // In SWMR mode a new attribute cannot be written: it is kept for the close.
+    w.file().setAttribute("test_figure", 2.5);
+    w.close();
+  }
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  REQUIRE(f.id() >= 0);  // closed: no SWMR needed to read it
+  const h5::Context c{path};
+  REQUIRE(h5::readStringAttribute(c, f.id(), "status") == "completed");
+  REQUIRE(h5::readDoubleAttribute(c, f.id(), "test_figure") == 2.5);
+  REQUIRE(readDataset(f.id(), "time").rows() == 11);
+  std::remove(path.c_str());
+}
+
+TEST_CASE("result file: a file size limit stops the rows between two flushes", "[result]") {
+  const std::string path = "result_size_limit_test.h5";
+  FallingBody sys(1e9);
+  ResultWriter w(path, outputLayout(sys), "unit test", "", FlushConfig{});
+  w.startSwmr();
+  const OutputSample sample = outputSample(sys, 0.0, initialState());
+  for (int i = 0; i < 20; ++i) w.append(sample);
+  w.flush();
+  const long flushed = w.rows();
+  // A limit just above the file's size: the next flush's reservation cannot be made.
+  struct rlimit old;
+  REQUIRE(getrlimit(RLIMIT_FSIZE, &old) == 0);
+  void (*previous)(int) = std::signal(SIGXFSZ, SIG_IGN);
+  struct rlimit tight = old;
+  tight.rlim_cur = static_cast<rlim_t>(std::filesystem::file_size(path) + 4096);
+  REQUIRE(setrlimit(RLIMIT_FSIZE, &tight) == 0);
+  bool refused = false;
+  try {
+    for (int i = 0; i < 300; ++i) w.append(sample);  // 16 rows per flush: the limit is met
+    w.flush();
+  } catch (const ComputeError& e) {
+    refused = std::string(e.what()).find("file size limit") != std::string::npos;
+  }
+  REQUIRE(setrlimit(RLIMIT_FSIZE, &old) == 0);
+  std::signal(SIGXFSZ, previous);
+  CHECK(refused);
+  w.file().setAttribute("status", std::string("failed: size limit"));
+  w.close();
+  h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+  REQUIRE(f.id() >= 0);
+  REQUIRE(h5::readStringAttribute(h5::Context{path}, f.id(), "status") == "failed: size limit");
+  const long rows = readDataset(f.id(), "time").rows();
+  CHECK(rows >= flushed);  // every row of the flushes before the limit
+  CHECK(rows < flushed + 300);
   std::remove(path.c_str());
 }
