@@ -99,7 +99,7 @@ void PeakStressLines::create() {
   h5::writeAttribute(c, root.id(), "contact_force_N", 0.0);
   h5::writeAttribute(c, root.id(), "description",
                      std::string("stresses along the SIDs' stress lines at the step of the "
-                                 "largest contact force (time_s -1: no contact yet)"));
+                                 "largest contact force"));
   const double nan = std::nan("");
   for (const Line& line : lines_) {
     const StressLine& sl = *line.source;
