@@ -27,7 +27,7 @@ import time
 import h5py
 import numpy as np
 
-from result_checks import Checks, signal_at_fraction
+from result_checks import Checks, signal_at_fraction, slow_impact_scene
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -35,16 +35,7 @@ check = Checks()
 FLUSH_INTERVAL = 1.0
 subprocess.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"),
                 "-o", os.path.join(out, "sphere2d_h3.sid.h5")], check=True)
-with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
-    text = f.read()
-for old, new in (("  rtol: 1.0e-6", "  rtol: 1.0e-6\n  max_step: 6.0e-9"),
-                 ("  flush_rows: 100", f"  flush_rows: 1000000\n  flush_interval: {FLUSH_INTERVAL}\n"
-                  "  progress_interval: 0.1")):
-    assert old in text, old
-    text = text.replace(old, new)
-scene = os.path.join(out, "long.yaml")
-with open(scene, "w") as f:
-    f.write(text)
+scene = slow_impact_scene(source, out, FLUSH_INTERVAL, 0.1)
 
 
 def rows_of(path, swmr=False):

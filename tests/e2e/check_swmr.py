@@ -29,7 +29,7 @@ import time
 import h5py
 import numpy as np
 
-from result_checks import Checks
+from result_checks import Checks, slow_impact_scene
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -37,16 +37,7 @@ check = Checks()
 END = 1e-4
 check.run([igaprep, "-q", os.path.join(source, "configs", "bodies", "sphere2d_h3.yaml"),
            "-o", os.path.join(out, "sphere2d_h3.sid.h5")])
-with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
-    text = f.read()
-for old, new in (("  rtol: 1.0e-6", "  rtol: 1.0e-6\n  max_step: 6.0e-9"),
-                 ("  flush_rows: 100", "  flush_rows: 1000000\n  flush_interval: 0.5\n"
-                  "  progress_interval: 0.05")):
-    assert old in text, old
-    text = text.replace(old, new)
-scene = os.path.join(out, "long.yaml")
-with open(scene, "w") as f:
-    f.write(text)
+scene = slow_impact_scene(source, out, 0.5, 0.05)
 result = os.path.join(out, "watched.h5")
 if os.path.exists(result):
     os.remove(result)

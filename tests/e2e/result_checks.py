@@ -63,3 +63,21 @@ def signal_at_fraction(cmd, end_time, fraction, sig):
     rc = proc.wait()
     reader.join()
     return rc, lines
+
+
+def slow_impact_scene(source, out, flush_interval, progress_interval):
+    """The Sect. 5 impact (impact2d_h3 on sphere2d_h3 in OUT) as a ~10 s run: steps limited
+    to 6 ns, the result flushed by wall time only (every `flush_interval` s; flush_rows too
+    large to matter), progress lines every `progress_interval` s. Returns the scene's path."""
+    import os
+    with open(os.path.join(source, "configs", "scenes", "impact2d_h3.yaml")) as f:
+        text = f.read()
+    for old, new in (("  rtol: 1.0e-6", "  rtol: 1.0e-6\n  max_step: 6.0e-9"),
+                     ("  flush_rows: 100", f"  flush_rows: 1000000\n  flush_interval: {flush_interval}\n"
+                      f"  progress_interval: {progress_interval}")):
+        assert old in text, old
+        text = text.replace(old, new)
+    scene = os.path.join(out, "long.yaml")
+    with open(scene, "w") as f:
+        f.write(text)
+    return scene
