@@ -17,8 +17,9 @@ hertz_effective_mass_kg, hertz_approach_speed_m_s, by RK4).
 
 A running result (ffrsim writes it in HDF5's SWMR mode, schemas/result_format.md) is read
 with SWMR: `--follow` redraws the pictures every few seconds from the rows flushed so far
-and stops once the run's status leaves `running` (completed, interrupted or failed); the
-stress lines appear once a contact was seen.
+and stops once the run's status leaves `running` (completed, interrupted or failed) or no
+ffrsim writes the file any more (a killed run: exit code 1); the stress lines appear once a
+contact was seen.
 
 usage: benchmarks/plot_result.py RESULT.h5 [-o DIR] [--zoom] [--follow [SECONDS]]
   -o DIR            where to write the PNGs (default: beside the result)
@@ -228,11 +229,28 @@ def draw(f, base, zoom):
     return t, written
 
 
+def writer_alive(path):
+    """Whether a process holds ffrsim's writer lock on the file (a record lock on one byte
+    at 2^62, runtime/output/writer_lock.h): False once the writing ffrsim is gone, however
+    it ended."""
+    import fcntl
+    import struct
+    try:
+        with open(path, "rb") as f:
+            request = struct.pack("hhqqi", fcntl.F_WRLCK, os.SEEK_SET, 1 << 62, 1, 0)
+            answer = fcntl.fcntl(f.fileno(), fcntl.F_GETLK, request)
+            return struct.unpack("hhqqi", answer)[0] != fcntl.F_UNLCK
+    except OSError:
+        return True  # no record locks here: cannot tell
+
+
 def follow(path, base, zoom, interval):
     """Redraws every `interval` seconds until the status leaves `running`. A reading that
     fails (the few milliseconds in which ffrsim writes its final figures) is tried again at
-    the next redraw; ten failures in a row end it with the error."""
+    the next redraw; ten failures in a row end it with the error. A run whose status stays
+    `running` with no ffrsim writing it (killed) ends it at the second redraw that sees so."""
     failures = 0
+    orphaned = 0
     while True:
         try:
             with open_result(path, swmr=True) as f:
@@ -252,6 +270,11 @@ def follow(path, base, zoom, interval):
             for w in written:
                 print(w)
             return 0
+        orphaned = 0 if writer_alive(path) else orphaned + 1
+        if orphaned == 2:
+            print(f"plot_result.py: {path}: status 'running' but no ffrsim writes it (killed?); "
+                  f"the pictures show its last flush", file=sys.stderr)
+            return 1
         time.sleep(interval)
 
 

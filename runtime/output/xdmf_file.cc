@@ -1,6 +1,8 @@
 #include "runtime/output/xdmf_file.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
@@ -95,12 +97,15 @@ std::string xdmfText(const std::string& h5File, const std::vector<double>& times
 void writeFileAtomically(const std::string& path, const std::string& text) {
   const std::string tmp = Str() << path << ".tmp-" << getpid();
   {
+    errno = 0;
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << text;
     out.close();
     if (!out) {
+      const std::string reason = errno != 0 ? std::string(std::strerror(errno)) : "write failed";
       std::remove(tmp.c_str());
-      throw ComputeError(Str() << path << ": cannot write (temporary file " << tmp << ")");
+      throw ComputeError(Str() << path << ": cannot write (temporary file " << tmp << ": "
+                               << reason << ")");
     }
   }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {

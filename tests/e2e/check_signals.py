@@ -10,6 +10,8 @@ too large to matter):
     had been computed one flush interval (plus 0.5 s of margin for a slow step) before the
     kill, as told by the progress lines on stderr; a reader without SWMR is refused with
     HDF5's "already open for write" (the mark of a file killed in SWMR mode, README);
+    `plot_result.py --follow` on it draws its last flush and stops by itself (exit code 1:
+    no ffrsim writes it any more);
   * SIGTERM while loading (sent before ffrsim starts, with the signal blocked by the
     launcher: it is pending until ffrsim installs its handler): exit code 1 and a message.
 The random moments are printed (seeded from the clock).
@@ -102,6 +104,14 @@ for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGKILL):
             refused = str(e)
         check("already open for write" in refused,
               f"SIGKILL: a reader without SWMR is refused: {refused}")
+        # Following the killed run's file stops by itself: no ffrsim writes it.
+        plots = os.path.join(out, "killed_plots")
+        r = subprocess.run([sys.executable, os.path.join(source, "benchmarks", "plot_result.py"),
+                            result, "-o", plots, "--follow", "0.2"], capture_output=True,
+                           text=True, timeout=60)
+        check(r.returncode == 1 and "no ffrsim writes it" in r.stderr
+              and os.path.exists(os.path.join(plots, "SIGKILL_force.png")),
+              f"SIGKILL: plot_result.py --follow stops: exit {r.returncode}, {r.stderr.strip()}")
 
 
 # SIGTERM before ffrsim runs: blocked by the launcher, pending, delivered at the handler.
