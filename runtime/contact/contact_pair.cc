@@ -16,7 +16,7 @@ constexpr int kParallelPoints = 128;
 
 ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b,
                          const BodyModel& B, int surfaceB, const ContactOptions& options)
-    : ForceElement(std::move(name), a, b), options_(options) {
+    : SurfaceContact(std::move(name), a, b, options) {
   if (A.spaceDim() != B.spaceDim()) {
     throw InputError(Str() << "contact '" << this->name() << "': bodies '" << A.name() << "' ("
                            << toString(A.sid().model) << ") and '" << B.name() << "' ("
@@ -25,12 +25,12 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
   }
   FFRIGA_CHECK(options_.penalty > 0.0, "penalty factor " << options_.penalty);
   dim_ = A.spaceDim();
-  setupSide(side_[0], A, surfaceA);
-  setupSide(side_[1], B, surfaceB);
-  for (const Side& s : side_) {
-    Eigen::MatrixXd P(s.cps.size(), dim_);
-    for (std::size_t i = 0; i < s.cps.size(); ++i) P.row(i) = s.P0.row(s.cps[i]);
-    size_ = std::max(size_, (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm());
+  side_[0].setup(A, surfaceA);
+  side_[1].setup(B, surfaceB);
+  for (Side& s : side_) {
+    s.cache.assign(s.numPoints(), SurfaceProjection());
+    s.clearance.assign(s.numPoints(), Side::Clearance());
+    size_ = std::max(size_, s.size());
   }
   margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
 }
@@ -42,78 +42,22 @@ void ContactPair::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>
            states.contacts ? &(*states.contacts)[slot()] : nullptr);
 }
 
+double ContactPair::boxGap(const ForceContext& at) const {
+  const int a = bodyA(), b = bodyB();
+  return boxGap(at.body(a), at.pose(a), at.body(b), at.pose(b));
+}
+
+Penetration ContactPair::deepestPenetration(const ForceContext& at) const {
+  const int a = bodyA(), b = bodyB();
+  return deepestPenetration(at.body(a), at.pose(a), at.body(b), at.pose(b));
+}
+
 double ContactPair::boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                            const BodyPose& pb) const {
   const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
   double gap = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < dim_; ++c) gap = std::max({gap, wa.lo(c) - wb.hi(c), wb.lo(c) - wa.hi(c)});
   return gap;
-}
-
-void ContactPair::setupSide(Side& side, const BodyModel& body, int surface) {
-  const FlexibleBodySid& sid = body.sid();
-  FFRIGA_CHECK(surface >= 0 && surface < static_cast<int>(sid.surfaces.size()),
-               "surface " << surface << " of body '" << body.name() << "'");
-  const ContactSurface& cs = sid.surfaces[surface];
-  side.surface = ExtractedSurface(cs, sid.weights);
-  side.cps = side.surface.allFunctions();
-  side.P0 = sid.control_points;
-  const int d = dim_, nq = body.nq(), nc = static_cast<int>(cs.collocation_points.rows());
-  if (nc == 0 || cs.collocation_weights.size() != nc ||
-      static_cast<int>(cs.collocation_element.size()) != nc) {
-    throw InputError(Str() << "body '" << body.name() << "', surface '" << cs.name << "': " << nc
-                           << " collocation points, " << cs.collocation_weights.size()
-                           << " weights, " << cs.collocation_element.size() << " elements");
-  }
-  side.PhiSt.resize(nq, side.cps.size() * d);
-  for (std::size_t i = 0; i < side.cps.size(); ++i)
-    side.PhiSt.middleCols(i * d, d) = sid.Phi.middleRows(side.cps[i] * d, d).transpose();
-  side.xc0.resize(nc, d);
-  side.PhiCt = Eigen::MatrixXd::Zero(nq, nc * d);
-  side.weight.resize(nc);
-  side.combo_offset.assign(1, 0);
-  side.combo_local.clear();
-  side.combo_value.clear();
-  side.local.assign(side.P0.rows(), -1);
-  for (std::size_t k = 0; k < side.cps.size(); ++k) side.local[side.cps[k]] = static_cast<int>(k);
-  side.cache.assign(nc, SurfaceProjection());
-  side.clearance.assign(nc, Side::Clearance());
-  Eigen::MatrixXd R;
-  for (int i = 0; i < nc; ++i) {
-    const int e = cs.collocation_element[i];
-    FFRIGA_CHECK(e >= 0 && e < side.surface.numElements(), "collocation element " << e);
-    const Eigen::VectorXd s = cs.collocation_points.row(i).transpose();
-    side.surface.basis(e, s.data(), 0, R);
-    side.xc0.row(i).setZero();
-    for (int k = 0; k < side.surface.numFunctions(e); ++k) {
-      const int f = side.surface.functions(e)[k];
-      side.xc0.row(i) += R(0, k) * side.P0.row(f);
-      side.PhiCt.middleCols(i * d, d) += R(0, k) * sid.Phi.middleRows(f * d, d).transpose();
-      side.combo_local.push_back(side.local[f]);
-      side.combo_value.push_back(R(0, k));
-    }
-    side.combo_offset.push_back(static_cast<int>(side.combo_local.size()));
-    const double ring = d == 2 ? 2.0 * M_PI * side.xc0(i, 0) : 1.0;
-    side.weight(i) = cs.collocation_weights(i) * ring;
-  }
-  // Orientation check of the SID's outward_sign (sid.h): if the normal at every collocation
-  // point points toward the centre of mass, the convention was mixed up (a wrong sign turns
-  // the penalty force into an attraction). Non-convex regions with mixed signs pass.
-  const Eigen::VectorXd c = (sid.first_moment / sid.mass).head(d);
-  int inward = 0;
-  SurfacePoint sp;
-  for (int i = 0; i < nc; ++i) {
-    const Eigen::VectorXd s = cs.collocation_points.row(i).transpose();
-    side.surface.evaluate(cs.collocation_element[i], s.data(), side.P0, 1, sp);
-    if (side.surface.normal(sp.dx).dot(sp.x - c) < 0.0) ++inward;
-  }
-  if (inward == nc) {
-    throw InputError(Str() << "body '" << body.name() << "', surface '" << cs.name
-                           << "': the outward normal (outward_sign " << cs.outward_sign
-                           << ") points toward the centre of mass at every collocation point; "
-                           << "expected it to point out of the body (2D rule: n = sign (t_y, "
-                           << "-t_x), 3D: n = sign x_s0 x x_s1)");
-  }
 }
 
 ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& body,
@@ -247,11 +191,7 @@ bool ContactPair::needsSearch(const Side& sc, int i, const BodyModel& C, const B
                               const TargetMotion& motion, PointResult& r, Eigen::VectorXd& x,
                               Eigen::VectorXd& y) {
   const int d = dim_;
-  r.xb = sc.xc0.row(i).transpose();
-  if (C.nq() > 0) {  // u_i from the control points' displacements (Side::combo_*)
-    for (int k = sc.combo_offset[i]; k < sc.combo_offset[i + 1]; ++k)
-      r.xb += sc.combo_value[k] * wc.u.segment(sc.combo_local[k] * d, d);
-  }
+  r.xb = C.nq() > 0 ? sc.bodyPoint(i, wc.u) : Eigen::VectorXd(sc.xc0.row(i).transpose());
   x = pc.origin + pc.A * r.xb;
   bool near = true;
   for (int a = 0; a < d; ++a)

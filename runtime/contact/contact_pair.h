@@ -38,72 +38,32 @@
 
 #include <Eigen/Dense>
 
-#include "common/splines/extracted_surface.h"
 #include "runtime/bodies/body_model.h"
 #include "runtime/contact/closest_point.h"
-#include "runtime/forces/force_element.h"
+#include "runtime/contact/collocated_surface.h"
+#include "runtime/contact/surface_contact.h"
 
 namespace ffriga {
 
-// Diagnostics of one pair at one state (averaged over the two roles).
-struct ContactState {
-  double normal_force = 0.0;  // N, magnitude of the resultant contact force on body A
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, resultant on body A, inertial
-                                                    // (axisymmetric: (0, F_y, 0), the ring)
-  double max_penetration = 0.0;                     // m, largest -g_n over both roles (0 if apart)
-  int active_points = 0;                            // collocation points with g_n < 0, both roles
-  double energy = 0.0;          // J, penalty energy sum 1/2 c_p g_n^2 w_i, averaged
-  int projection_failures = 0;  // closest-point searches that did not converge
-  // m: the deepest penetration the pair cannot represent: a collocation point near the
-  // target whose closest point is on the edge of the target's contact surface (beyond it)
-  // while the point is behind the surface's tangent planes at that edge point and at the
-  // surface's centre (ContactPair::beyondEdgeDepth). Such a point is inside the target body
-  // but gets no force: the contact region is too small for the motion (0 while every
-  // penetrating point has a proper foot point).
-  double beyond_edge_penetration = 0.0;
-};
-
-// The deepest initial penetration of a pair (ContactPair::deepestPenetration).
-struct Penetration {
-  double depth = 0.0;  // m, largest -g_n, 0 if none
-  int contact_body = -1;  // system index of the body whose collocation point it is
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // that point, world coordinates (m)
-};
-
-struct ContactOptions {
-  double penalty = 0.0;         // c_p, N/m^3
-  bool both_roles = true;       // average A->B and B->A (paper); else A is the contact body
-  double search_margin = -1.0;  // m; < 0: 10 % of the larger surface's bounding box size
-  // m; < 0: 1e-6 of the larger surface's size (the initial penetration accepted, and the
-  // penetration beyond a surface's edge that stops a run)
-  double penetration_tolerance = -1.0;
-};
-
-// A force element (runtime/forces/force_element.h) with stiffness terms: one per active
+// A contact pair (runtime/contact/surface_contact.h) with stiffness terms: one per active
 // collocation point, its linearisation for the Newton matrix (Eq. 17-18) with
 // k = c_p w_i (role factor included).
-class ContactPair : public ForceElement {
+class ContactPair : public SurfaceContact {
  public:
   ContactPair(std::string name, int a, const BodyModel& A, int surfaceA, int b, const BodyModel& B,
               int surfaceB, const ContactOptions& options);
 
-  const ContactOptions& options() const { return options_; }
-  const char* kind() const override { return "contact"; }
-  bool isContact() const override { return true; }
-  bool hasStiffnessTerms() const override { return true; }
   // evaluate() at the context's poses, its state into states.contacts[slot()].
   void addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
                  const ForceStates& states) override;
+  double boxGap(const ForceContext& at) const override;
+  Penetration deepestPenetration(const ForceContext& at) const override;
 
   // Separation of the two surfaces' bounding boxes (deformed control points, world
   // coordinates; the largest gap over the axes, m, <= 0 when they overlap), and the size of
   // the larger contact surface (the diagonal of its undeformed box, m).
   double boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                 const BodyPose& pb) const;
-  double surfaceSize() const { return size_; }
-  double penetrationTolerance() const {
-    return options_.penetration_tolerance > 0.0 ? options_.penetration_tolerance : 1e-6 * size_;
-  }
   // The deepest penetration over every collocation point of both roles, without the
   // bounding-box pre-check: -g_n where the closest point on the other surface is a proper
   // foot point, beyondEdgeDepth where it is on the edge. Also bodies placed deep into each
@@ -120,24 +80,8 @@ class ContactPair : public ForceElement {
                 double* hA, double* hB, ContactState* state);
 
  private:
-  struct Side {
-    ExtractedSurface surface;
-    std::vector<int> cps;               // body control points of the surface
-    Eigen::MatrixXd P0;                 // ncp x d, all body control points (undeformed)
-    Eigen::MatrixXd PhiSt;              // nq x (cps.size() * d): Phi of the surface points,
-                                        // transposed (a point's d columns are contiguous)
-    Eigen::MatrixXd xc0;                // nc x d, collocation points, undeformed body frame
-    Eigen::MatrixXd PhiCt;              // nq x (nc * d): Phi at collocation point i in columns
-                                        // i d .. i d + d - 1 (transposed, contiguous); read
-                                        // for active points and the initial penetration scan
-    // Collocation point i as a combination of the surface's control points (cps order):
-    // u_i = sum_k R_k(xi_i) u_k over k in [combo_offset[i], combo_offset[i + 1]), so the
-    // points' displacements come from those of the control points without a product with
-    // PhiCt (O(nc) instead of O(nq nc)).
-    std::vector<int> local;             // body control point -> its index in cps (-1: none)
-    std::vector<int> combo_offset, combo_local;
-    std::vector<double> combo_value;
-    Eigen::VectorXd weight;             // nc, collocation weight incl. the ring factor (m^2)
+  // A collocated surface, as the contact side and as the target of the other.
+  struct Side : CollocatedSurface {
     std::vector<SurfaceProjection> cache;  // warm starts, one per collocation point
     // Clearance bound (header comment), one per collocation point as a contact point.
     struct Clearance {
@@ -184,7 +128,6 @@ class ContactPair : public ForceElement {
   // surface is in front of one of them), else 0.
   double beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge, const Eigen::VectorXd& x,
                          const SurfaceProjection& p) const;
-  void setupSide(Side& side, const BodyModel& body, int surface);
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   // Side c's collocation points against the other side as the target: adds the generalised
   // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three
@@ -222,14 +165,6 @@ class ContactPair : public ForceElement {
   // Phi_k^T FT_k of each surface control point k that carries force into hT.
   void addElasticForces(const Side& st, const BodyModel& C, const BodyModel& T, double* hC,
                         double* hT, const ForceSums& sums) const;
-  // Counts of the closest-point searches: done, and avoided by the clearance bound.
- public:
-  long long searches() const { return searches_; }
-  long long searchesAvoided() const { return avoided_; }
-
- private:
-  long long searches_ = 0, avoided_ = 0;
-
   // What stiffnessTerms() needs of each active point of the last evaluate(): the contact
   // side c, collocation point i, the foot point's element on the target and its basis
   // values there, body points, normal and k; and the bodies and poses of that evaluation.
@@ -243,11 +178,9 @@ class ContactPair : public ForceElement {
   BodyPose poses_[2];
   mutable std::vector<StiffnessTerm> terms_;
   mutable bool terms_formed_ = true;
-  ContactOptions options_;
   Side side_[2];
   int dim_ = 3;
   double margin_ = 0.0;
-  double size_ = 0.0;
 };
 
 }  // namespace ffriga

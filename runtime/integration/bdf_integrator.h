@@ -41,6 +41,9 @@ struct IntegratorOptions {
   // stability-limited to tiny steps and CVODE's error test can fail for good (the paper's
   // Sect. 5 impacts, benchmarks/impact2d.py: order 5 fails sphere2d_g6 and needs 1.5-3x the
   // steps of order 3 on the others). Order 3 (A(86 deg)-stable) ran every 2D model fastest.
+  // But order 3 is not stable on the imaginary axis either: undamped elastic modes resolved
+  // over thousands of periods grow (measured after the Sect. 5 impact: elastic energy x600
+  // in 3 ms; a bouncing ball chattered). Such runs set 2 (A-stable, slightly dissipative).
   int max_order = 3;
 };
 

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -28,10 +29,21 @@ struct BodyLayout {
 
 // A contact pair, a joint or a force element between two bodies (or a body and the ground).
 struct ConnectionLayout {
+  ConnectionLayout(std::string name_, std::string kind_, std::string a, std::string b,
+                   double penalty = 0.0)
+      : name(std::move(name_)), kind(std::move(kind_)), end_a(std::move(a)), end_b(std::move(b)),
+        penalty_factor(penalty) {}
   std::string name;
   std::string kind;  // joint type, force element kind ("contact" for pairs)
   std::string end_a, end_b;  // body names (pairs) or BODY.MARKER / ground (joints, forces)
   double penalty_factor = 0.0;  // contact pairs: c_p, N/m^3
+  // A pair with a rigid obstacle (end_b): its shape ("plane", "sphere"; empty for two
+  // bodies), point (plane: p, sphere: centre; m, inertial), normal (plane) and radius (m;
+  // plane: 0 where infinite).
+  std::string obstacle_shape;
+  Eigen::Vector3d obstacle_point = Eigen::Vector3d::Zero();
+  Eigen::Vector3d obstacle_normal = Eigen::Vector3d::Zero();
+  double obstacle_radius = 0.0;
 };
 
 struct SensorLayout {

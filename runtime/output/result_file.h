@@ -39,7 +39,7 @@
 namespace ffriga {
 
 constexpr const char* kResultFormat = "ffriga-result";
-constexpr int kResultFormatVersion = 5;
+constexpr int kResultFormatVersion = 6;
 
 class ResultFile {
  public:

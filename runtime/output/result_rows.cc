@@ -64,6 +64,13 @@ void ResultRows::createContacts(const OutputLayout& layout) {
     h5::writeAttribute(c, g.id(), "body_b", pair.end_b);
     h5::writeAttribute(c, g.id(), "penalty_factor", pair.penalty_factor);
     h5::writeAttribute(c, g.id(), "penalty_factor_unit", std::string("N/m^3"));
+    if (!pair.obstacle_shape.empty()) {  // body_b is a rigid obstacle fixed in space
+      h5::writeAttribute(c, g.id(), "obstacle_shape", pair.obstacle_shape);
+      h5::writeAttribute(c, g.id(), "obstacle_radius_m", pair.obstacle_radius);
+      h5::writeVector(c, g.id(), "obstacle_point", pair.obstacle_point, "m");
+      if (pair.obstacle_shape == "plane")
+        h5::writeVector(c, g.id(), "obstacle_normal", pair.obstacle_normal, "1");
+    }
     ContactSeries s;
     s.normal_force = &file_.series(g.id(), "normal_force", 0, "N",
                                    "magnitude of the resultant contact force on body_a "

@@ -22,6 +22,7 @@ void writeRunFigures(ResultFile& w, const RunFigures& r) {
   w.setAttribute("contact_duration_s", r.contact_begin >= 0.0 && r.contact_end >= 0.0
                                            ? r.contact_end - r.contact_begin
                                            : -1.0);
+  w.setAttribute("contact_events", r.contact_events);
   w.setAttribute("solver_steps", r.solver.steps);
   w.setAttribute("solver_rhs_evals", r.solver.rhs_evals);
   w.setAttribute("solver_jacobian_evals", r.solver.jacobian_evals);
@@ -48,6 +49,7 @@ std::map<std::string, double> restartFigures(const RunFigures& r, int phase, dou
       {"max_contact_force_time_s", r.max_contact_force_time},
       {"contact_begin_s", r.contact_begin},
       {"contact_end_s", r.contact_end},
+      {"contact_events", static_cast<double>(r.contact_events)},
       {"steps", static_cast<double>(r.solver.steps)},
       {"rhs_evals", static_cast<double>(r.solver.rhs_evals)},
       {"jacobian_evals", static_cast<double>(r.solver.jacobian_evals)},
@@ -81,6 +83,7 @@ void restoreFigures(const std::map<std::string, double>& record, RunFigures& r, 
   r.max_contact_force_time = getOr("max_contact_force_time_s", -1.0);
   r.contact_begin = getOr("contact_begin_s", -1.0);
   r.contact_end = getOr("contact_end_s", -1.0);
+  r.contact_events = count("contact_events");
   r.solver.steps = count("steps");
   r.solver.rhs_evals = count("rhs_evals");
   r.solver.jacobian_evals = count("jacobian_evals");

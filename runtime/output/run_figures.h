@@ -36,8 +36,11 @@ struct RunFigures {
   double wall_time_s = 0.0;
   double max_contact_force = 0.0;        // N, over the steps and contact pairs
   double max_contact_force_time = -1.0;  // s, the end of its step (-1: no contact)
-  double contact_begin = -1.0;           // s (-1: none)
-  double contact_end = -1.0;             // s (-1: none)
+  // The first contact (any pair; a body bouncing or a chain of balls has several): the
+  // midpoints of the steps in which it began and ended (-1: none, or not ended).
+  double contact_begin = -1.0;  // s
+  double contact_end = -1.0;    // s
+  long contact_events = 0;      // contacts begun: steps in contact after steps without
   SolverCounts solver;
   PhaseFigures before, during, after;  // before, during and after contact (Table 3)
   long long contact_searches = 0;          // closest-point searches in this invocation

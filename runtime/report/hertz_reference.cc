@@ -1,5 +1,11 @@
 #include "runtime/report/hertz_reference.h"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "runtime/contact/obstacle_contact.h"
+
 namespace ffriga {
 
 namespace {
@@ -16,10 +22,40 @@ std::optional<HertzSphere> sphereOf(const FlexibleBodySid& sid) {
   return s;
 }
 
+// A rigid obstacle as Hertz sees it: infinitely stiff and heavy; a plane also infinitely
+// large (IEEE infinities make E*, R* and m* those of the body alone).
+HertzSphere rigidPartner(const RigidObstacle& o) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return HertzSphere{inf, 0.0, o.shape() == RigidObstacle::Shape::kSphere ? o.radius() : inf, inf};
+}
+
+// A sphere body against an obstacle: the approach speed along the normal at the nearest
+// point when the sphere's surface first touches, under gravity alone (v_n^2 + 2 g_n d with
+// d the initial clearance; a body that never gets there has none).
+std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
+  const auto sa = sphereOf(scene.system->body(c.bodyA()).sid());
+  if (!sa) return std::nullopt;
+  const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];
+  const Eigen::Vector3d& v = scene.initial_velocity[c.bodyA()];
+  const ObstaclePoint p = c.obstacle().nearest(r);
+  if (!p.covered) return std::nullopt;
+  const double clearance = std::max(0.0, p.gap - sa->radius);
+  const double vn = -v.dot(p.normal), gn = -scene.system->gravity().dot(p.normal);
+  const double v2 = vn * vn + 2.0 * gn * clearance;
+  if (!(vn > 0.0 || gn > 0.0) || !(v2 > 0.0)) return std::nullopt;
+  HertzReference h;
+  h.approach_speed = std::sqrt(v2);
+  h.sphere_a = *sa;
+  h.sphere_b = rigidPartner(c.obstacle());
+  h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed);
+  return h;
+}
+
 }  // namespace
 
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
-  const ContactPair& c = scene.system->contact(pair);
+  const SurfaceContact& c = scene.system->contact(pair);
+  if (const auto* o = dynamic_cast<const ObstacleContact*>(&c)) return obstacleReference(scene, *o);
   const BodyModel& a = scene.system->body(c.bodyA());
   const BodyModel& b = scene.system->body(c.bodyB());
   const auto sa = sphereOf(a.sid());
@@ -55,7 +91,7 @@ std::vector<std::optional<HertzPartner>> hertzPartners(const Scene& scene,
     if (!h) continue;
     const int a = sys.contact(c).bodyA(), b = sys.contact(c).bodyB();
     if (!partners[a]) partners[a] = HertzPartner{h->sphere_a, h->sphere_b};
-    if (!partners[b]) partners[b] = HertzPartner{h->sphere_b, h->sphere_a};
+    if (b >= 0 && !partners[b]) partners[b] = HertzPartner{h->sphere_b, h->sphere_a};
   }
   return partners;
 }

@@ -2,7 +2,11 @@
 // spheres: both SIDs describe a geometry of type half_disk or sphere (radius and material
 // from the SID's /geometry and /material), and the scene gives their initial positions and
 // velocities. The approach speed is the relative velocity along the line of centres at
-// t = 0. Used by ffrsim to print the maximum force and contact duration next to Hertz.
+// t = 0 (uniform gravity does not change it). A sphere against a rigid obstacle
+// (runtime/contact/rigid_obstacle.h) is Hertz's sphere on a rigid half-space or rigid sphere:
+// the obstacle infinitely stiff and heavy, the approach speed the body's speed along the
+// obstacle's normal when it first touches, under gravity alone. Used by ffrsim to print the
+// maximum force and contact duration next to Hertz.
 #pragma once
 
 #include <optional>

@@ -67,14 +67,14 @@ void assembleInitialState(const MultibodySystem& sys, const std::vector<InitialP
 void checkInitialPenetration(const YamlDocument& doc, const MultibodySystem& sys,
                              const Eigen::VectorXd& y0) {
   for (int c = 0; c < sys.numContacts(); ++c) {
-    const ContactPair& pair = sys.contact(c);
+    const SurfaceContact& pair = sys.contact(c);
     const Penetration p = sys.deepestPenetration(y0.data(), c);
     const double tol = pair.penetrationTolerance();
     if (p.depth <= tol) continue;
     const std::string k = Str() << "contacts[" << c << "]";
     throw inputError(doc, doc.root["contacts"][c], k,
-                     Str() << "bodies '" << sys.body(pair.bodyA()).name() << "' and '"
-                           << sys.body(pair.bodyB()).name() << "' start " << p.depth
+                     Str() << "'" << sys.contactSideName(c, 0) << "' and '"
+                           << sys.contactSideName(c, 1) << "' start " << p.depth
                            << " m into each other (a point of '"
                            << sys.body(p.contact_body).name() << "' at (" << p.point.transpose()
                            << ") m); at most " << tol

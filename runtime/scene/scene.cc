@@ -10,8 +10,11 @@
 #include "common/input/schemas.h"
 #include "common/input/yaml_overrides.h"
 #include "runtime/bodies/quasi_static_rule.h"
+#include "runtime/contact/contact_pair.h"
+#include "runtime/contact/obstacle_contact.h"
 #include "runtime/scene/initial_state.h"
 #include "runtime/scene/scene_multibody.h"
+#include "runtime/scene/scene_obstacles.h"
 #include "runtime/scene/scene_values.h"
 
 namespace ffriga {
@@ -67,6 +70,8 @@ class SceneBuilder {
   void addBodies();
   void addContacts();
   int contactSurface(std::size_t c, int i, int body) const;
+  ContactOptions contactOptions(std::size_t c) const;
+  void warnFacingAway();
   void readIntegrator();
   void addMultibody();
   void assembleState();
@@ -154,30 +159,48 @@ int SceneBuilder::contactSurface(std::size_t c, int i, int body) const {
                    Str() << "the SID has no contact surface named '" << want << "'");
 }
 
-// The contact pairs (Sect. 4).
+// The contact pairs (Sect. 4): two bodies, or a body and an obstacle.
 void SceneBuilder::addContacts() {
   const YAML::Node contacts = doc().root["contacts"];
   MultibodySystem& sys = *scene_.system;
+  const std::map<std::string, RigidObstacle> obstacles = readObstacles(doc(), axisymmetric_);
   for (std::size_t c = 0; contacts && c < contacts.size(); ++c) {
     const YAML::Node C = contacts[c];
     const std::string k = Str() << "contacts[" << c << "]";
-    const int ia = index_.at(getString(doc(), C["bodies"][0], "")),
-              ib = index_.at(getString(doc(), C["bodies"][1], ""));
-    const int surfA = contactSurface(c, 0, ia), surfB = contactSurface(c, 1, ib);
-    ContactOptions o;
-    o.penalty = getDouble(doc(), C["penalty_factor"], k + ".penalty_factor");
-    if (!(o.penalty > 0.0))  // also checked by the schema; kept for direct callers
-      throw inputError(doc(), C["penalty_factor"], k + ".penalty_factor",
-                       Str() << "expected a number > 0 N/m^3, found " << o.penalty);
-    o.both_roles = getBool(doc(), C["both_roles"], k + ".both_roles");
-    o.search_margin = doubleOr(doc(), C["search_margin"], k + ".search_margin", -1.0);
-    o.penetration_tolerance =
-        doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
+    const std::string nameA = getString(doc(), C["bodies"][0], ""),
+                      nameB = getString(doc(), C["bodies"][1], "");
+    const ContactOptions o = contactOptions(c);
     const std::string name = C["name"] ? getString(doc(), C["name"], k + ".name")
-                                       : sys.body(ia).name() + "-" + sys.body(ib).name();
+                                       : nameA + "-" + nameB;
+    const auto obstacle = obstacles.find(obstacles.count(nameA) ? nameA : nameB);
+    if (obstacle != obstacles.end()) {  // the body is side A whichever order the file gives
+      const int i = obstacles.count(nameA) ? 1 : 0;
+      const int body = index_.at(i == 0 ? nameA : nameB);
+      sys.addForceElement(std::make_unique<ObstacleContact>(
+          name, body, sys.body(body), contactSurface(c, i, body), obstacle->second, o));
+      continue;
+    }
+    const int ia = index_.at(nameA), ib = index_.at(nameB);
+    const int surfA = contactSurface(c, 0, ia), surfB = contactSurface(c, 1, ib);
     sys.addForceElement(std::make_unique<ContactPair>(name, ia, sys.body(ia), surfA, ib, sys.body(ib),
                                                  surfB, o));
   }
+}
+
+// Pair c's penalty and search settings.
+ContactOptions SceneBuilder::contactOptions(std::size_t c) const {
+  const YAML::Node C = doc().root["contacts"][c];
+  const std::string k = Str() << "contacts[" << c << "]";
+  ContactOptions o;
+  o.penalty = getDouble(doc(), C["penalty_factor"], k + ".penalty_factor");
+  if (!(o.penalty > 0.0))  // also checked by the schema; kept for direct callers
+    throw inputError(doc(), C["penalty_factor"], k + ".penalty_factor",
+                     Str() << "expected a number > 0 N/m^3, found " << o.penalty);
+  o.both_roles = getBool(doc(), C["both_roles"], k + ".both_roles");
+  o.search_margin = doubleOr(doc(), C["search_margin"], k + ".search_margin", -1.0);
+  o.penetration_tolerance =
+      doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
+  return o;
 }
 
 // The time span, the output interval and the integrator's tolerances and limits.
@@ -220,6 +243,29 @@ void SceneBuilder::assembleState() {
   assembleInitialState(sys, poses_, axisymmetric_, atol_, scene_.y0, scene_.settings.integrator.atol);
   checkInitialConstraints(doc(), sys, scene_.y0);
   checkInitialPenetration(doc(), sys, scene_.y0);
+  warnFacingAway();
+}
+
+// A warning for each obstacle pair whose contact surface faces away from its obstacle at
+// t = 0 (the body falls through it unless it turns): the surface's outward normal at its
+// centre against the obstacle's normal at the nearest point.
+void SceneBuilder::warnFacingAway() {
+  const MultibodySystem& sys = *scene_.system;
+  for (int c = 0; c < sys.numContacts(); ++c) {
+    const auto* pair = dynamic_cast<const ObstacleContact*>(&sys.contact(c));
+    if (!pair) continue;
+    const int a = pair->bodyA();
+    Eigen::Vector3d x, n;
+    pair->surfaceCentre(sys.body(a).pose(scene_.y0.data() + sys.positionOffset(a)), x, n);
+    const ObstaclePoint p = pair->obstacle().nearest(x);
+    if (n.dot(p.normal) <= 0.0) continue;
+    scene_.warnings.push_back(
+        Str() << "contact '" << pair->name() << "': the contact surface of body '"
+              << sys.body(a).name() << "' faces away from obstacle '" << pair->obstacleName()
+              << "' at t = 0 (outward normal (" << n.transpose() << ") at its centre, the "
+              << "obstacle's (" << p.normal.transpose() << ")): they touch only if the body "
+              << "turns (bodies[" << a << "].orientation turns it)");
+  }
 }
 
 // outputs.visualisation: frames of every SID body; each SID must carry a visualisation mesh

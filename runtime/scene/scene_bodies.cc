@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <utility>
 
@@ -44,6 +45,29 @@ std::string resolveSid(const YamlDocument& doc, const YAML::Node& node, const st
 
 }  // namespace
 
+namespace {
+
+// The obstacles' names: unique among bodies and obstacles, not 'ground'.
+std::set<std::string> checkObstacleNames(const YamlDocument& doc,
+                                         const std::map<std::string, int>& bodies) {
+  std::set<std::string> names;
+  const YAML::Node obstacles = doc.root["obstacles"];
+  for (std::size_t o = 0; obstacles && o < obstacles.size(); ++o) {
+    const std::string key = Str() << "obstacles[" << o << "].name";
+    const std::string name = getString(doc, obstacles[o]["name"], key);
+    if (name == "ground")
+      throw inputError(doc, obstacles[o]["name"], key,
+                       "'ground' is reserved for the inertial frame (name the plane 'floor')");
+    if (bodies.count(name) || !names.insert(name).second)
+      throw inputError(doc, obstacles[o]["name"], key,
+                       Str() << "name '" << name << "' is used twice (bodies and obstacles "
+                             << "share their names)");
+  }
+  return names;
+}
+
+}  // namespace
+
 std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
   const YAML::Node bodies = doc.root["bodies"];
   std::map<std::string, int> index;
@@ -64,23 +88,30 @@ std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
         throw inputError(doc, bodies[b][key], Str() << "bodies[" << b << "]." << key,
                          Str() << "'" << key << "' is for SID bodies, not rigid ones");
   }
+  const std::set<std::string> obstacles = checkObstacleNames(doc, index);
   const YAML::Node contacts = doc.root["contacts"];
   for (std::size_t c = 0; contacts && c < contacts.size(); ++c) {
     const YAML::Node pair = contacts[c]["bodies"];
+    int bodies = 0;
     for (int i = 0; i < 2; ++i) {
       const std::string key = Str() << "contacts[" << c << "].bodies[" << i << "]";
       const std::string name = getString(doc, pair[i], key);
-      if (!index.count(name)) {
+      bodies += index.count(name) ? 1 : 0;
+      if (!index.count(name) && !obstacles.count(name)) {
         std::string known;
         for (const auto& kv : index) known += (known.empty() ? "" : ", ") + kv.first;
+        for (const auto& o : obstacles) known += ", obstacle " + o;
         throw inputError(doc, pair[i], key,
-                         Str() << "expected the name of a body of this scene (" << known
-                               << "), found '" << name << "'");
+                         Str() << "expected the name of a body or obstacle of this scene ("
+                               << known << "), found '" << name << "'");
       }
     }
     if (getString(doc, pair[0], "") == getString(doc, pair[1], ""))
       throw inputError(doc, pair, Str() << "contacts[" << c << "].bodies",
                        "expected two different bodies");
+    if (bodies == 0)
+      throw inputError(doc, pair, Str() << "contacts[" << c << "].bodies",
+                       "expected at least one body: two obstacles are fixed and never meet");
   }
   return index;
 }

@@ -30,8 +30,8 @@ struct InitialPose {
   Eigen::VectorXd q, qd;
 };
 
-// Unique body names ("ground" reserved) and contact pairs of known, distinct bodies: the
-// index of each body by name.
+// Unique body and obstacle names ("ground" reserved) and contact pairs of known, distinct
+// bodies or a body and an obstacle: the index of each body by name.
 std::map<std::string, int> checkBodyNames(const YamlDocument& doc);
 
 // The body data: SID files (all resolved before any is read, so that a missing file is

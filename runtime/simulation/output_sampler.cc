@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "runtime/bodies/axisymmetric_body.h"
+#include "runtime/contact/obstacle_contact.h"
 
 namespace ffriga {
 
@@ -92,9 +93,16 @@ OutputLayout outputLayout(const MultibodySystem& system) {
         {body.name(), body.sharedSid(), body.nq(), qs.size(), qs.empty() ? 0.0 : qs.cutoff_hz});
   }
   for (int c = 0; c < system.numContacts(); ++c) {
-    const ContactPair& pair = system.contact(c);
-    layout.contacts.push_back({pair.name(), "contact", system.body(pair.bodyA()).name(),
-                               system.body(pair.bodyB()).name(), pair.options().penalty});
+    const SurfaceContact& pair = system.contact(c);
+    ConnectionLayout l{pair.name(), "contact", system.contactSideName(c, 0),
+                       system.contactSideName(c, 1), pair.options().penalty};
+    if (const auto* o = dynamic_cast<const ObstacleContact*>(&pair)) {
+      l.obstacle_shape = o->obstacle().shapeName();
+      l.obstacle_point = o->obstacle().point();
+      l.obstacle_normal = o->obstacle().normal();
+      l.obstacle_radius = o->obstacle().radius();
+    }
+    layout.contacts.push_back(std::move(l));
   }
   for (int j = 0; j < system.numJoints(); ++j) {
     const Joint& joint = system.joint(j);

@@ -80,21 +80,22 @@ class ApproachControl {
 void checkRepresentable(const MultibodySystem& system, double t) {
   const std::vector<ContactState>& states = system.lastRhsContacts();
   for (int c = 0; c < static_cast<int>(states.size()); ++c) {
-    const ContactPair& pair = system.contact(c);
+    const SurfaceContact& pair = system.contact(c);
+    const std::string& nameA = system.contactSideName(c, 0);
+    const std::string& nameB = system.contactSideName(c, 1);
     if (states[c].projection_failures > 0) {
       throw ComputeError(Str() << "contact '" << pair.name() << "': at t = " << t << " s the "
                                << "closest-point search (Eq. 15) failed for "
                                << states[c].projection_failures << " collocation point(s) near "
-                               << "the other surface (bodies '" << system.body(pair.bodyA()).name()
-                               << "' and '" << system.body(pair.bodyB()).name() << "'): their "
+                               << "the other surface ('" << nameA << "' and '" << nameB
+                               << "'): their "
                                << "contact forces cannot be computed");
     }
     if (states[c].beyond_edge_penetration <= pair.penetrationTolerance()) continue;
     throw ComputeError(Str() << "contact '" << pair.name() << "': at t = " << t << " s a point "
                              << "penetrates by " << states[c].beyond_edge_penetration
-                             << " m beyond the edge of a contact surface (bodies '"
-                             << system.body(pair.bodyA()).name() << "' and '"
-                             << system.body(pair.bodyB()).name() << "'), where it gets no force: "
+                             << " m beyond the edge of a contact surface ('" << nameA << "' and '"
+                             << nameB << "'), where it gets no force: "
                              << "the contact region is too small for this motion (enlarge "
                              << "contact.region in the body file)");
   }
@@ -247,8 +248,9 @@ void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::Vect
     times.push_back(outputTime(nextOut_++));
   addContactOutputs(settings_.contact_output_interval, contact || phase_ == 1, tPrev_, t_, times);
   writeOutputs(integ, system_, writer_, times, t_, y);
+  if (contact && phase_ != 1) ++f.contact_events;
   if (contact && f.contact_begin < 0.0) f.contact_begin = 0.5 * (tPrev_ + t_);
-  if (!contact && phase_ == 1) f.contact_end = 0.5 * (tPrev_ + t_);
+  if (!contact && phase_ == 1 && f.contact_end < 0.0) f.contact_end = 0.5 * (tPrev_ + t_);
   if (contact)
     phase_ = 1;
   else if (phase_ == 1)

@@ -17,7 +17,7 @@ int MultibodySystem::addBody(std::unique_ptr<BodyModel> body) {
 void MultibodySystem::addForceElement(std::unique_ptr<ForceElement> element) {
   FFRIGA_CHECK(element->bodyA() < numBodies() && element->bodyB() < numBodies(),
                "force element '" << element->name() << "': body index");
-  if (auto* pair = dynamic_cast<ContactPair*>(element.get())) {
+  if (auto* pair = dynamic_cast<SurfaceContact*>(element.get())) {
     pair->setSlot(numContacts());
     contacts_.push_back(pair);
   } else if (auto* line = dynamic_cast<LineForce*>(element.get())) {
@@ -139,9 +139,11 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
       const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
       const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
       for (int X = 0; X < 2; ++X) {
+        if (bodiesOf[X] < 0) continue;  // a target fixed in space
         Eigen::MatrixXd& D = dh[bodiesOf[X]];
         if (D.size() == 0) D.setZero(bodies_[bodiesOf[X]]->numVelocities(), n);
         for (int Y = 0; Y < 2; ++Y) {
+          if (bodiesOf[Y] < 0) continue;
           const double sign = (X == Y) ? -1.0 : 1.0;
           const int po = pos_offset_[bodiesOf[Y]];
           D.middleCols(po, bp[Y]->size()) += (sign * t.k) * (*bv[X]) * bp[Y]->transpose();
@@ -256,9 +258,11 @@ void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
     for (const StiffnessTerm& t : element->stiffnessTerms()) {
       const int bc = t.body_c, bt = t.body_t;
       J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
-      J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
       J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
-      J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+      if (bt >= 0) {  // else a target fixed in space
+        J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
+        J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+      }
       ++col;
     }
   }
@@ -373,10 +377,9 @@ void MultibodySystem::normalize(double* y) const {
 
 double MultibodySystem::contactGap(const double* y, double* size) const {
   double gap = std::numeric_limits<double>::infinity();
+  const SystemState at(*this, y);
   for (const auto& pair : contacts_) {
-    const int a = pair->bodyA(), b = pair->bodyB();
-    const double g = pair->boxGap(*bodies_[a], bodies_[a]->pose(y + pos_offset_[a]), *bodies_[b],
-                                  bodies_[b]->pose(y + pos_offset_[b]));
+    const double g = pair->boxGap(at);
     if (g < gap) {
       gap = g;
       if (size) *size = pair->surfaceSize();
@@ -386,10 +389,13 @@ double MultibodySystem::contactGap(const double* y, double* size) const {
 }
 
 Penetration MultibodySystem::deepestPenetration(const double* y, int c) const {
-  const ContactPair& pair = *contacts_[c];
-  const int a = pair.bodyA(), b = pair.bodyB();
-  return pair.deepestPenetration(*bodies_[a], bodies_[a]->pose(y + pos_offset_[a]), *bodies_[b],
-                                 bodies_[b]->pose(y + pos_offset_[b]));
+  return contacts_[c]->deepestPenetration(SystemState(*this, y));
+}
+
+const std::string& MultibodySystem::contactSideName(int c, int side) const {
+  const SurfaceContact& pair = *contacts_[c];
+  const int b = side == 0 ? pair.bodyA() : pair.bodyB();
+  return b >= 0 ? bodies_[b]->name() : pair.obstacleName();
 }
 
 SystemEnergies MultibodySystem::energies(const double* y) {

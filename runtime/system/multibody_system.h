@@ -41,7 +41,7 @@
 
 #include "runtime/bodies/body_model.h"
 #include "runtime/constraints/joint.h"
-#include "runtime/contact/contact_pair.h"
+#include "runtime/contact/surface_contact.h"
 #include "runtime/forces/line_force.h"
 #include "runtime/integration/ode_system.h"
 
@@ -91,8 +91,10 @@ class MultibodySystem : public OdeSystem {
   const ForceElement& forceElement(int i) const { return *forces_[i]; }
   // The force elements by kind: contact pairs, line forces (each in the order added).
   int numContacts() const { return static_cast<int>(contacts_.size()); }
-  const ContactPair& contact(int c) const { return *contacts_[c]; }
-  ContactPair& contact(int c) { return *contacts_[c]; }
+  const SurfaceContact& contact(int c) const { return *contacts_[c]; }
+  SurfaceContact& contact(int c) { return *contacts_[c]; }
+  // The name of contact pair c's side 0 (body A) or 1 (body B, or the obstacle).
+  const std::string& contactSideName(int c, int side) const;
 
   int numJoints() const { return static_cast<int>(joints_.size()); }
   const Joint& joint(int j) const { return *joints_[j]; }
@@ -161,10 +163,10 @@ class MultibodySystem : public OdeSystem {
   void contactForces(const double* y, std::vector<Eigen::VectorXd>& h,
                      std::vector<ContactState>* states);
   SystemEnergies energies(const double* y);
-  // The smallest bounding-box gap of the contact pairs at y (ContactPair::boxGap, m;
+  // The smallest bounding-box gap of the contact pairs at y (SurfaceContact::boxGap, m;
   // +infinity without pairs) and the size of that pair's surfaces (m).
   double contactGap(const double* y, double* size = nullptr) const;
-  // The deepest penetration of contact pair c at y (ContactPair::deepestPenetration).
+  // The deepest penetration of contact pair c at y (SurfaceContact::deepestPenetration).
   Penetration deepestPenetration(const double* y, int c) const;
   // Total linear and angular momentum (about the inertial origin), inertial components.
   void momentum(const double* y, Eigen::Vector3d& linear, Eigen::Vector3d& angular) const;
@@ -172,7 +174,7 @@ class MultibodySystem : public OdeSystem {
  private:
   std::vector<std::unique_ptr<BodyModel>> bodies_;
   std::vector<std::unique_ptr<ForceElement>> forces_;  // in the order added
-  std::vector<ContactPair*> contacts_;                 // the contact pairs among them
+  std::vector<SurfaceContact*> contacts_;              // the contact pairs among them
   std::vector<std::unique_ptr<Joint>> joints_;
   std::vector<LineForce*> line_forces_;                // the line forces among them
   std::vector<Sensor> sensors_;

@@ -12,6 +12,7 @@
 #include "common/input/json_schema.h"
 #include "common/splines/refinement.h"
 #include "common/input/schemas.h"
+#include "common/splines/extracted_surface.h"
 #include "runtime/scene/scene.h"
 #include "runtime/simulation/output_sampler.h"
 #include "runtime/bodies/quasi_static_rule.h"

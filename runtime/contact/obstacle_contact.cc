@@ -1,0 +1,138 @@
+#include "runtime/contact/obstacle_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "common/base/error.h"
+
+namespace ffriga {
+
+ObstacleContact::ObstacleContact(std::string name, int a, const BodyModel& A, int surface,
+                                 RigidObstacle obstacle, const ContactOptions& options)
+    : SurfaceContact(std::move(name), a, -1, options), obstacle_(std::move(obstacle)) {
+  FFRIGA_CHECK(options_.penalty > 0.0, "penalty factor " << options_.penalty);
+  dim_ = A.spaceDim();
+  side_.setup(A, surface);
+  obstacle_name_ = obstacle_.name();
+  size_ = side_.size();
+  margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
+}
+
+Eigen::Vector3d ObstacleContact::world(const BodyPose& pa, const Eigen::VectorXd& xb) const {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  x.head(dim_) = pa.origin + pa.A * xb;
+  return x;
+}
+
+void ObstacleContact::worldBox(const BodyPose& pa, Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
+  const Eigen::VectorXd u = side_.displacements(pa.q);
+  lo.setConstant(std::numeric_limits<double>::infinity());
+  hi = -lo;
+  for (std::size_t i = 0; i < side_.cps.size(); ++i) {
+    const Eigen::VectorXd xb = side_.P0.row(side_.cps[i]).transpose() + u.segment(i * dim_, dim_);
+    const Eigen::Vector3d x = world(pa, xb);
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  if (dim_ == 2) lo(2) = hi(2) = 0.0;
+}
+
+void ObstacleContact::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
+                                const ForceStates& states) {
+  const int a = bodyA();
+  evaluate(at.body(a), at.pose(a), h[a].data(),
+           states.contacts ? &(*states.contacts)[slot()] : nullptr);
+}
+
+double ObstacleContact::boxGap(const ForceContext& at) const {
+  Eigen::Vector3d lo, hi;
+  worldBox(at.pose(bodyA()), lo, hi);  // the surface is inside its control points' hull
+  return obstacle_.boxGap(lo, hi);
+}
+
+void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* hA,
+                               ContactState* state) {
+  terms_.clear();
+  active_.clear();
+  terms_formed_ = false;
+  body_ = &A;
+  pose_ = pa;
+  Eigen::Vector3d lo, hi;
+  worldBox(pa, lo, hi);
+  if (obstacle_.boxGap(lo, hi) > margin_) return;  // apart: no work
+  const Eigen::VectorXd u = A.nq() > 0 ? side_.displacements(pa.q) : Eigen::VectorXd();
+  const int nc = side_.numPoints();
+  searches_ += nc;
+  Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(A.nq());
+  ContactState s;
+  for (int i = 0; i < nc; ++i) {  // in point order: the same sums on any thread count
+    const Eigen::VectorXd xb = side_.bodyPoint(i, u);
+    const ObstaclePoint p = obstacle_.nearest(world(pa, xb));
+    if (!p.covered || p.gap >= 0.0) continue;
+    const double k = options_.penalty * side_.weight(i);
+    const Eigen::VectorXd n = p.normal.head(dim_);
+    const Eigen::VectorXd f = (-k * p.gap) * n;
+    A.addRigidPointForce(pa, xb, f, hA);
+    if (A.nq() > 0) fbSum += side_.PhiCt.middleCols(i * dim_, dim_) * (pa.A.transpose() * f);
+    active_.push_back({i, k, xb, n});
+    s.force.head(dim_) += f;
+    s.max_penetration = std::max(s.max_penetration, -p.gap);
+    ++s.active_points;
+    s.energy += 0.5 * k * p.gap * p.gap;
+  }
+  if (A.nq() > 0) Eigen::Map<Eigen::VectorXd>(hA + A.numRigidVelocities(), A.nq()) += fbSum;
+  if (state) {
+    if (dim_ == 2) s.force = Eigen::Vector3d(0.0, s.force(1), 0.0);
+    s.normal_force = s.force.norm();
+    *state = s;
+  }
+}
+
+const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
+  if (terms_formed_) return terms_;
+  terms_.clear();
+  terms_.reserve(active_.size());
+  for (const ActivePoint& a : active_) {
+    StiffnessTerm term;
+    term.body_c = bodyA();
+    term.body_t = -1;
+    term.k = a.k;
+    body_->pointGradients(pose_, a.xb, side_.PhiCt.middleCols(a.i * dim_, dim_).transpose(), a.n,
+                          term.bvC, term.bpC);
+    terms_.push_back(std::move(term));
+  }
+  terms_formed_ = true;
+  return terms_;
+}
+
+Penetration ObstacleContact::deepestPenetration(const ForceContext& at) const {
+  const BodyPose& pa = at.pose(bodyA());
+  const Eigen::VectorXd u = at.body(bodyA()).nq() > 0 ? side_.displacements(pa.q)
+                                                       : Eigen::VectorXd();
+  Penetration deepest;
+  for (int i = 0; i < side_.numPoints(); ++i) {
+    const Eigen::Vector3d x = world(pa, side_.bodyPoint(i, u));
+    const ObstaclePoint p = obstacle_.nearest(x);
+    if (!p.covered || -p.gap <= deepest.depth) continue;
+    deepest.depth = -p.gap;
+    deepest.contact_body = bodyA();
+    deepest.point = x;
+  }
+  return deepest;
+}
+
+void ObstacleContact::surfaceCentre(const BodyPose& pa, Eigen::Vector3d& x,
+                                    Eigen::Vector3d& n) const {
+  const ExtractedSurface& surface = side_.surface;
+  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
+  int e = surface.findElement(mid.data());
+  if (e < 0) e = 0;
+  SurfacePoint sp;
+  surface.evaluate(e, mid.data(), side_.P0, 1, sp);
+  x = world(pa, sp.x);
+  n.setZero();
+  n.head(dim_) = pa.A * surface.normal(sp.dx);  // the body's outward normal, turned
+}
+
+}  // namespace ffriga

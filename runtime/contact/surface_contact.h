@@ -1,0 +1,91 @@
+// Penalty contact of a body's collocated contact surface (paper Sect. 4, Eq. 16-18) against
+// a target: what every contact pair of the system has in common, whatever its target is.
+//   * ContactPair (runtime/contact/contact_pair.h): two flexible NURBS contact surfaces,
+//     each collocated against the other (the paper's pairs);
+//   * ObstacleContact (runtime/contact/obstacle_contact.h): one body's contact surface
+//     against a rigid obstacle fixed in space (a plane, a sphere), evaluated exactly.
+// Each is a force element with stiffness terms (runtime/forces/force_element.h); the
+// multibody system holds them as its contact pairs (numContacts, contact(c)), the result
+// file gives each a group, and the run stops on what they cannot represent.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Dense>
+
+#include "runtime/forces/force_element.h"
+
+namespace ffriga {
+
+// Diagnostics of one pair at one state (a ContactPair averages them over its two roles).
+struct ContactState {
+  double normal_force = 0.0;  // N, magnitude of the resultant contact force on body A
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, resultant on body A, inertial
+                                                    // (axisymmetric: (0, F_y, 0), the ring)
+  double max_penetration = 0.0;                     // m, largest -g_n over both roles (0 if apart)
+  int active_points = 0;                            // collocation points with g_n < 0, both roles
+  double energy = 0.0;          // J, penalty energy sum 1/2 c_p g_n^2 w_i, averaged
+  int projection_failures = 0;  // closest-point searches that did not converge
+  // m: the deepest penetration the pair cannot represent: a collocation point near the
+  // target whose closest point is on the edge of the target's contact surface (beyond it)
+  // while the point is behind the surface's tangent planes at that edge point and at the
+  // surface's centre (ContactPair::beyondEdgeDepth). Such a point is inside the target body
+  // but gets no force: the contact region is too small for the motion (0 while every
+  // penetrating point has a proper foot point).
+  double beyond_edge_penetration = 0.0;
+};
+
+// The deepest initial penetration of a pair (SurfaceContact::deepestPenetration).
+struct Penetration {
+  double depth = 0.0;  // m, largest -g_n, 0 if none
+  int contact_body = -1;  // system index of the body whose collocation point it is
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // that point, world coordinates (m)
+};
+
+struct ContactOptions {
+  double penalty = 0.0;         // c_p, N/m^3
+  bool both_roles = true;       // average A->B and B->A (paper); else A is the contact body
+                                // (an obstacle pair has one role: the body's)
+  double search_margin = -1.0;  // m; < 0: 10 % of the larger surface's bounding box size
+  // m; < 0: 1e-6 of the larger surface's size (the initial penetration accepted, and the
+  // penetration beyond a surface's edge that stops a run)
+  double penetration_tolerance = -1.0;
+};
+
+class SurfaceContact : public ForceElement {
+ public:
+  // a, b: the system indices of the two bodies; b = -1: the target is fixed in space.
+  SurfaceContact(std::string name, int a, int b, const ContactOptions& options)
+      : ForceElement(std::move(name), a, b), options_(options) {}
+
+  const ContactOptions& options() const { return options_; }
+  const char* kind() const override { return "contact"; }
+  bool isContact() const override { return true; }
+  bool hasStiffnessTerms() const override { return true; }
+  // The name of the target in reports when it is not a body (b = -1): the obstacle's.
+  const std::string& obstacleName() const { return obstacle_name_; }
+
+  // A lower bound of the distance between the contact surface(s) and the target at the
+  // context's state (m; <= 0 when they may touch): the approach control's gap.
+  virtual double boxGap(const ForceContext& at) const = 0;
+  // The size of the (larger) contact surface, the diagonal of its undeformed box (m).
+  double surfaceSize() const { return size_; }
+  double penetrationTolerance() const {
+    return options_.penetration_tolerance > 0.0 ? options_.penetration_tolerance : 1e-6 * size_;
+  }
+  // The deepest penetration over every collocation point, without any pre-check (a full
+  // search per point: for the initial state, not for every step).
+  virtual Penetration deepestPenetration(const ForceContext& at) const = 0;
+
+  // Counts of the closest-point searches: done, and avoided by a clearance bound.
+  long long searches() const { return searches_; }
+  long long searchesAvoided() const { return avoided_; }
+
+ protected:
+  ContactOptions options_;
+  std::string obstacle_name_;
+  double size_ = 0.0;
+  long long searches_ = 0, avoided_ = 0;
+};
+
+}  // namespace ffriga

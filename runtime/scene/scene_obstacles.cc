@@ -1,0 +1,53 @@
+#include "runtime/scene/scene_obstacles.h"
+
+#include <cmath>
+
+#include "runtime/scene/scene_values.h"
+
+namespace ffriga {
+
+namespace {
+
+RigidObstacle readPlane(const YamlDocument& doc, const YAML::Node& P, const std::string& name,
+                        const std::string& k) {
+  const Eigen::Vector3d point = vector3(doc, P["point"], k + ".point");
+  const Eigen::Vector3d normal = vector3(doc, P["normal"], k + ".normal");
+  const double length = normal.norm();
+  if (!(length > 0.0) || !std::isfinite(length))
+    throw inputError(doc, P["normal"], k + ".normal",
+                     Str() << "expected a nonzero direction, found (" << normal.transpose() << ")");
+  const double radius = doubleOr(doc, P["radius"], k + ".radius", 0.0);
+  return RigidObstacle::plane(name, point, normal, radius);
+}
+
+RigidObstacle readSphere(const YamlDocument& doc, const YAML::Node& S, const std::string& name,
+                         const std::string& k) {
+  const Eigen::Vector3d centre = vector3(doc, S["centre"], k + ".centre");
+  return RigidObstacle::sphere(name, centre, getDouble(doc, S["radius"], k + ".radius"));
+}
+
+}  // namespace
+
+std::map<std::string, RigidObstacle> readObstacles(const YamlDocument& doc, bool axisymmetric) {
+  std::map<std::string, RigidObstacle> out;
+  const YAML::Node obstacles = doc.root["obstacles"];
+  for (std::size_t o = 0; obstacles && o < obstacles.size(); ++o) {
+    const YAML::Node O = obstacles[o];
+    const std::string k = Str() << "obstacles[" << o << "]";
+    const std::string name = getString(doc, O["name"], k + ".name");
+    const bool plane = bool(O["plane"]);
+    const std::string ks = k + (plane ? ".plane" : ".sphere");
+    RigidObstacle obstacle = plane ? readPlane(doc, O["plane"], name, ks)
+                                   : readSphere(doc, O["sphere"], name, ks);
+    if (axisymmetric && !obstacle.axisymmetric())
+      throw inputError(doc, plane ? O["plane"] : O["sphere"], ks,
+                       plane ? "an axisymmetric scene needs a plane normal to its axis (normal "
+                               "(0, +-1, 0)), finite ones centred on it (point (0, y, 0))"
+                             : "an axisymmetric scene needs a sphere centred on its axis "
+                               "(centre (0, y, 0))");
+    out.emplace(name, std::move(obstacle));
+  }
+  return out;
+}
+
+}  // namespace ffriga
