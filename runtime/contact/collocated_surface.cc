@@ -40,6 +40,7 @@ void CollocatedSurface::setup(const BodyModel& body, int index) {
                "surface " << index << " of body '" << body.name() << "'");
   const ContactSurface& cs = sid.surfaces[index];
   dim = body.spaceDim();
+  name = cs.name;
   surface = ExtractedSurface(cs, sid.weights);
   cps = surface.allFunctions();
   P0 = sid.control_points;

@@ -7,6 +7,7 @@
 // Phi per point).
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -17,6 +18,7 @@
 namespace ffriga {
 
 struct CollocatedSurface {
+  std::string name;                   // the SID contact surface's (the body file's region)
   ExtractedSurface surface;
   std::vector<int> cps;               // body control points of the surface
   Eigen::MatrixXd P0;                 // ncp x d, all body control points (undeformed)

@@ -58,6 +58,7 @@ class ContactPair : public SurfaceContact {
                  const ForceStates& states) override;
   double boxGap(const ForceContext& at) const override;
   Penetration deepestPenetration(const ForceContext& at) const override;
+  const std::string& regionName(int side) const override { return side_[side].name; }
 
   // Separation of the two surfaces' bounding boxes (deformed control points, world
   // coordinates; the largest gap over the axes, m, <= 0 when they overlap), and the size of

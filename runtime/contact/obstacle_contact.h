@@ -39,6 +39,7 @@ class ObstacleContact : public SurfaceContact {
   void addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
                  const ForceStates& states) override;
   double boxGap(const ForceContext& at) const override;
+  const std::string& regionName(int side) const override { return side == 0 ? side_.name : none_; }
   Penetration deepestPenetration(const ForceContext& at) const override;
   const std::vector<StiffnessTerm>& stiffnessTerms() const override;
   // Adds the generalised contact forces on A to hA (layout of A's velocities) and fills
@@ -54,6 +55,7 @@ class ObstacleContact : public SurfaceContact {
   Eigen::Vector3d world(const BodyPose& pa, const Eigen::VectorXd& xb) const;
 
   CollocatedSurface side_;
+  const std::string none_;
   RigidObstacle obstacle_;
   int dim_ = 3;
   double margin_ = 0.0;

@@ -64,6 +64,9 @@ class SurfaceContact : public ForceElement {
   bool hasStiffnessTerms() const override { return true; }
   // The name of the target in reports when it is not a body (b = -1): the obstacle's.
   const std::string& obstacleName() const { return obstacle_name_; }
+  // The contact region (SID contact surface) of side 0 (body A) or 1 (body B; "" for an
+  // obstacle).
+  virtual const std::string& regionName(int side) const = 0;
 
   // A lower bound of the distance between the contact surface(s) and the target at the
   // context's state (m; <= 0 when they may touch): the approach control's gap.

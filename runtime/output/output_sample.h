@@ -36,6 +36,7 @@ struct ConnectionLayout {
   std::string name;
   std::string kind;  // joint type, force element kind ("contact" for pairs)
   std::string end_a, end_b;  // body names (pairs) or BODY.MARKER / ground (joints, forces)
+  std::string region_a, region_b;  // contact pairs: the bodies' contact regions ("": none)
   double penalty_factor = 0.0;  // contact pairs: c_p, N/m^3
   // A pair with a rigid obstacle (end_b): its shape ("plane", "sphere"; empty for two
   // bodies), point (plane: p, sphere: centre; m, inertial), normal (plane) and radius (m;

@@ -62,6 +62,8 @@ void ResultRows::createContacts(const OutputLayout& layout) {
     h5::Handle g = file_.group(contacts.id(), pair.name);
     h5::writeAttribute(c, g.id(), "body_a", pair.end_a);
     h5::writeAttribute(c, g.id(), "body_b", pair.end_b);
+    h5::writeAttribute(c, g.id(), "region_a", pair.region_a);
+    if (!pair.region_b.empty()) h5::writeAttribute(c, g.id(), "region_b", pair.region_b);
     h5::writeAttribute(c, g.id(), "penalty_factor", pair.penalty_factor);
     h5::writeAttribute(c, g.id(), "penalty_factor_unit", std::string("N/m^3"));
     if (!pair.obstacle_shape.empty()) {  // body_b is a rigid obstacle fixed in space

@@ -140,23 +140,34 @@ void SceneBuilder::addBodies() {
   }
 }
 
-// The index of the SID contact surface of pair c's body i (bodies[body].surface, else the
-// first).
+// The index of the SID contact surface of pair c's body i: the region its entry names
+// (BODY.REGION), else bodies[body].surface, else the SID's only one.
 int SceneBuilder::contactSurface(std::size_t c, int i, int body) const {
-  const std::string k = Str() << "contacts[" << c << "]";
+  const YAML::Node entry = doc().root["contacts"][c]["bodies"][i];
+  const std::string k = Str() << "contacts[" << c << "].bodies[" << i << "]";
   const FlexibleBodySid& sid = *sids_[body];
-  const YAML::Node sname = doc().root["bodies"][body]["surface"];
+  const std::string& name = scene_.system->body(body).name();
   if (sid.surfaces.empty())
-    throw inputError(doc(), doc().root["contacts"][c]["bodies"][i],
-                     k + ".bodies[" + std::to_string(i) + "]",
-                     Str() << "body '" << scene_.system->body(body).name()
-                           << "' has no contact surface in its SID");
-  if (!sname) return 0;
-  const std::string want = getString(doc(), sname, "surface");
+    throw inputError(doc(), entry, k, Str() << "body '" << name << "' has no contact surface in its SID");
+  std::string regions;
+  for (const ContactSurface& s : sid.surfaces) regions += (regions.empty() ? "" : ", ") + s.name;
+  const YAML::Node sname = doc().root["bodies"][body]["surface"];
+  std::string want = pairRegionName(getString(doc(), entry, k));
+  if (want.empty() && !sname) {
+    if (sid.surfaces.size() == 1) return 0;
+    throw inputError(doc(), entry, k,
+                     Str() << "body '" << name << "' has " << sid.surfaces.size()
+                           << " contact regions (" << regions << "): name one, as " << name << "."
+                           << sid.surfaces[0].name);
+  }
+  const bool fromEntry = !want.empty();
+  if (!fromEntry) want = getString(doc(), sname, "surface");
   for (std::size_t s = 0; s < sid.surfaces.size(); ++s)
     if (sid.surfaces[s].name == want) return static_cast<int>(s);
-  throw inputError(doc(), sname, Str() << "bodies[" << body << "].surface",
-                   Str() << "the SID has no contact surface named '" << want << "'");
+  throw inputError(doc(), fromEntry ? entry : sname,
+                   fromEntry ? k : std::string(Str() << "bodies[" << body << "].surface"),
+                   Str() << "body '" << name << "' has no contact region '" << want
+                         << "' (its regions: " << regions << ")");
 }
 
 // The contact pairs (Sect. 4): two bodies, or a body and an obstacle.
@@ -167,14 +178,19 @@ void SceneBuilder::addContacts() {
   for (std::size_t c = 0; contacts && c < contacts.size(); ++c) {
     const YAML::Node C = contacts[c];
     const std::string k = Str() << "contacts[" << c << "]";
-    const std::string nameA = getString(doc(), C["bodies"][0], ""),
-                      nameB = getString(doc(), C["bodies"][1], "");
+    const std::string entryA = getString(doc(), C["bodies"][0], ""),
+                      entryB = getString(doc(), C["bodies"][1], "");
+    const std::string nameA = pairBodyName(entryA), nameB = pairBodyName(entryB);
     const ContactOptions o = contactOptions(c);
     const std::string name = C["name"] ? getString(doc(), C["name"], k + ".name")
-                                       : nameA + "-" + nameB;
+                                       : entryA + "-" + entryB;
     const auto obstacle = obstacles.find(obstacles.count(nameA) ? nameA : nameB);
     if (obstacle != obstacles.end()) {  // the body is side A whichever order the file gives
       const int i = obstacles.count(nameA) ? 1 : 0;
+      if (!pairRegionName(i == 0 ? entryB : entryA).empty())
+        throw inputError(doc(), C["bodies"][1 - i], Str() << k << ".bodies[" << 1 - i << "]",
+                         Str() << "obstacle '" << obstacle->first << "' has no contact regions "
+                               << "(name it without '.')");
       const int body = index_.at(i == 0 ? nameA : nameB);
       sys.addForceElement(std::make_unique<ObstacleContact>(
           name, body, sys.body(body), contactSurface(c, i, body), obstacle->second, o));

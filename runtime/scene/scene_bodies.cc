@@ -68,6 +68,13 @@ std::set<std::string> checkObstacleNames(const YamlDocument& doc,
 
 }  // namespace
 
+std::string pairBodyName(const std::string& entry) { return entry.substr(0, entry.find('.')); }
+
+std::string pairRegionName(const std::string& entry) {
+  const std::size_t dot = entry.find('.');
+  return dot == std::string::npos ? std::string() : entry.substr(dot + 1);
+}
+
 std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
   const YAML::Node bodies = doc.root["bodies"];
   std::map<std::string, int> index;
@@ -76,6 +83,9 @@ std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
     const std::string name = getString(doc, bodies[b]["name"], key);
     if (name == "ground")
       throw inputError(doc, bodies[b]["name"], key, "'ground' is reserved for the inertial frame");
+    if (name.find('.') != std::string::npos)
+      throw inputError(doc, bodies[b]["name"], key,
+                       "a body name cannot contain '.' (BODY.REGION and BODY.MARKER name its parts)");
     if (!index.emplace(name, static_cast<int>(b)).second)
       throw inputError(doc, bodies[b]["name"], key,
                        Str() << "body name '" << name << "' is used twice");
@@ -95,7 +105,7 @@ std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
     int bodies = 0;
     for (int i = 0; i < 2; ++i) {
       const std::string key = Str() << "contacts[" << c << "].bodies[" << i << "]";
-      const std::string name = getString(doc, pair[i], key);
+      const std::string name = pairBodyName(getString(doc, pair[i], key));
       bodies += index.count(name) ? 1 : 0;
       if (!index.count(name) && !obstacles.count(name)) {
         std::string known;
@@ -106,7 +116,7 @@ std::map<std::string, int> checkBodyNames(const YamlDocument& doc) {
                                << known << "), found '" << name << "'");
       }
     }
-    if (getString(doc, pair[0], "") == getString(doc, pair[1], ""))
+    if (pairBodyName(getString(doc, pair[0], "")) == pairBodyName(getString(doc, pair[1], "")))
       throw inputError(doc, pair, Str() << "contacts[" << c << "].bodies",
                        "expected two different bodies");
     if (bodies == 0)

@@ -34,6 +34,11 @@ struct InitialPose {
 // bodies or a body and an obstacle: the index of each body by name.
 std::map<std::string, int> checkBodyNames(const YamlDocument& doc);
 
+// A contact pair's entry BODY or BODY.REGION (contacts[].bodies[i]): the body (or obstacle)
+// name and the contact region's name ("" if none is given).
+std::string pairBodyName(const std::string& entry);
+std::string pairRegionName(const std::string& entry);
+
 // The body data: SID files (all resolved before any is read, so that a missing file is
 // reported at once; `files` gets each body's path, "" for rigid bodies), frozen SIDs, rigid
 // bodies defined in the scene. Bodies of one SID file share its data.

@@ -96,6 +96,8 @@ OutputLayout outputLayout(const MultibodySystem& system) {
     const SurfaceContact& pair = system.contact(c);
     ConnectionLayout l{pair.name(), "contact", system.contactSideName(c, 0),
                        system.contactSideName(c, 1), pair.options().penalty};
+    l.region_a = pair.regionName(0);
+    l.region_b = pair.regionName(1);
     if (const auto* o = dynamic_cast<const ObstacleContact*>(&pair)) {
       l.obstacle_shape = o->obstacle().shapeName();
       l.obstacle_point = o->obstacle().point();

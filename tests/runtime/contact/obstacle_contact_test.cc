@@ -787,3 +787,46 @@ TEST_CASE("obstacle contact scene: bad obstacles name file, line and key", "[con
              Catch::Contains("scene.yaml:11: key 'contacts[0]'") &&
                  Catch::Contains("'ball' and 'floor' start 0.005 m into each other"));
 }
+
+TEST_CASE("contact regions: a pair names BODY.REGION of a body with several", "[contact]") {
+  // The ball with two contact surfaces (the same arc twice, named top and bottom).
+  FlexibleBodySid two = ball2d(0.01);
+  two.surfaces[0].name = "top";
+  two.surfaces.push_back(two.surfaces[0]);
+  two.surfaces[1].name = "bottom";
+  auto build = [&](const std::string& text) {
+    return buildScene(parseYamlText(text, "scene.yaml"), {}, ballLoader(two));
+  };
+  auto error = [&](const std::string& text) -> std::string {
+    try {
+      build(text);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  const std::string named = replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.bottom, floor]");
+  const Scene scene = build(named);
+  CHECK(scene.system->contact(0).regionName(0) == "bottom");
+  CHECK(scene.system->contact(0).regionName(1).empty());
+  CHECK(scene.system->contact(0).name() == "ball.bottom-floor");  // default: the two entries
+  // bodies[].surface names the region where the pair does not.
+  const Scene bySurface = build(replaced(kBallScene, "velocity: [0, -0.1, 0]",
+                                         "velocity: [0, -0.1, 0]\n    surface: bottom"));
+  CHECK(bySurface.system->contact(0).regionName(0) == "bottom");
+  // Without a name the choice is the user's to make; unknown names list the regions.
+  CHECK_THAT(error(kBallScene),
+             Catch::Contains("scene.yaml:11: key 'contacts[0].bodies[0]'") &&
+                 Catch::Contains("body 'ball' has 2 contact regions (top, bottom): name one, "
+                                 "as ball.top"));
+  CHECK_THAT(error(replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.side, floor]")),
+             Catch::Contains("key 'contacts[0].bodies[0]'") &&
+                 Catch::Contains("body 'ball' has no contact region 'side' (its regions: top, "
+                                 "bottom)"));
+  CHECK_THAT(error(replaced(named, "[ball.bottom, floor]", "[ball.bottom, floor.top]")),
+             Catch::Contains("key 'contacts[0].bodies[1]'") &&
+                 Catch::Contains("obstacle 'floor' has no contact regions"));
+  CHECK_THAT(error(replaced(named, "  - name: ball\n", "  - name: ba.ll\n")),
+             Catch::Contains("key 'bodies[0].name'") &&
+                 Catch::Contains("a body name cannot contain '.'"));
+}
