@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
   }
   try {
     const BodyConfig config = loadBodyConfig(argv[1]);
-    if (config.model != ModelKind::kSolid || !config.contact.present)
+    if (config.model != ModelKind::kSolid || config.contacts.empty())
       throw InputError(std::string(argv[1]) + ": expected a solid body with a contact region");
     const HierarchicalSpace space = bodySpace(config);
     const DofMap dofs(space, false, tiedControlPoints(space));
@@ -72,14 +72,11 @@ int main(int argc, char** argv) {
     auto t0 = std::chrono::steady_clock::now();
     const ElasticSystem sys = assembleElasticity(space, dofs, model);
     const double assembly = seconds(t0);
-    ContactRegion region;
-    region.direction = config.contact.direction;
-    region.upper = config.contact.upper;
-    region.bounds = config.contact.bounds;
-    std::vector<char> interface(dofs.numDofs(), 0);
-    for (int k : interfaceControlPoints(space, region))
-      for (int c = 0; c < 3; ++c)
-        if (dofs.dof(k, c) >= 0) interface[dofs.dof(k, c)] = 1;
+    std::vector<char> interface(dofs.numDofs(), 0);  // every region's points, as igaprep
+    for (const ContactConfig& c : config.contacts)
+      for (int k : interfaceControlPoints(space, ContactRegion{c.direction, c.upper, c.bounds}))
+        for (int d = 0; d < 3; ++d)
+          if (dofs.dof(k, d) >= 0) interface[dofs.dof(k, d)] = 1;
     Pattern p = interiorPattern(sys.K, interface);
     std::printf("%s: %d DOFs, K_ii %d x %d with %zu stored entries (upper); assembly %.1f s\n",
                 argv[1], dofs.numDofs(), p.n, p.n, p.inner.size(), assembly);

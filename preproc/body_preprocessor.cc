@@ -57,6 +57,7 @@ class BodyPreprocessor {
   void identify();
   void setupGeometry();
   void assembleSystem();
+  std::vector<int> interfacePoints() const;
   void selectInterface();
   void reduce();
   void computeInvariants();
@@ -74,7 +75,6 @@ class BodyPreprocessor {
   ElasticityModel model_;
   ElasticSystem system_;
   ReductionOptions options_;
-  ContactRegion region_;
   int gauss_face_ = 0;           // face markers: degree + 2 Gauss points per direction
   std::vector<double> frame_xi_;  // the tangent frame marker's parameters
   ReducedModel reduced_;
@@ -98,11 +98,12 @@ FlexibleBodySid BodyPreprocessor::run() {
 void BodyPreprocessor::checkInterfaceExists() const {
   bool interfaceMarkers = false;
   for (const MarkerConfig& m : config_.markers) interfaceMarkers = interfaceMarkers || m.interface;
-  if (config_.reduction.method == ReductionMethod::kCraigBampton && !config_.contact.present && !interfaceMarkers) {
+  if (config_.reduction.method == ReductionMethod::kCraigBampton && config_.contacts.empty() &&
+      !interfaceMarkers) {
     throw InputError(Str() << config_.source.path << ": the Craig-Bampton reduction (the default "
                            << "of key 'reduction.method') needs an interface: add the key "
-                           << "'contact' with face and region, or 'interface: true' on a marker, "
-                           << "or choose method: modal");
+                           << "'contact' (or 'contacts') with face and region, or 'interface: "
+                           << "true' on a marker, or choose method: modal");
   }
 }
 
@@ -145,10 +146,35 @@ void BodyPreprocessor::assembleSystem() {
   clock_.done("assembly", Str() << "K: " << system_.K.nonZeros() << " stored entries (upper)");
 }
 
-// The reduction's options: method, frame and, for Craig-Bampton, the interface DOFs: every
-// control point of the contact region and, at interface markers, every control point whose
-// function does not vanish there, so that a joint's load lies in the span of the
-// constraint modes.
+// The control points of every contact region (their union; each region must select some)
+// and, at interface markers, every control point whose function does not vanish there, so
+// that a joint's load lies in the span of the constraint modes.
+std::vector<int> BodyPreprocessor::interfacePoints() const {
+  const SplineSpace& space = *space_;
+  std::vector<int> cps;
+  for (const ContactConfig& c : config_.contacts) {
+    const std::vector<int> own =
+        interfaceControlPoints(space, ContactRegion{c.direction, c.upper, c.bounds});
+    if (own.empty()) {
+      throw inputError(config_.source, contactNode(config_.source, c)["region"], c.key + ".region",
+                       Str() << "the region selects no control point on face "
+                             << faceName(c.direction, c.upper) << ": no interface, no surface");
+    }
+    cps.insert(cps.end(), own.begin(), own.end());
+  }
+  for (const MarkerConfig& m : config_.markers) {
+    if (!m.interface) continue;
+    const Marker mk = m.face ? evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper,
+                                                  gauss_face_, Eigen::MatrixXd(0, 0))
+                             : evaluateMarker(space, m.name, m.parameters);
+    for (std::size_t j = 0; j < mk.functions.size(); ++j)
+      if (mk.values(static_cast<int>(j)) != 0.0) cps.push_back(mk.functions[j]);
+  }
+  return cps;  // duplicates (shared by regions and markers) count once below
+}
+
+// The reduction's options: method, frame and, for Craig-Bampton, the interface DOFs of
+// interfacePoints().
 void BodyPreprocessor::selectInterface() {
   const SplineSpace& space = *space_;
   const int s = space.spaceDim();
@@ -156,24 +182,10 @@ void BodyPreprocessor::selectInterface() {
   options_.frame = config_.reduction.frame;
   options_.normal_modes = config_.reduction.normal_modes;
   options_.rigid_modes = rigidBodyModes(space, *dofs_, axi_);
-  if (config_.contact.present) {
-    region_.direction = config_.contact.direction;
-    region_.upper = config_.contact.upper;
-    region_.bounds = config_.contact.bounds;
-  }
   for (int a = 0; a < space.paramDim(); ++a)
     gauss_face_ = std::max(gauss_face_, space_->basePatch().degree(a) + 2);
   if (options_.method == ReductionMethod::kCraigBampton) {
-    std::vector<int> cps;
-    if (config_.contact.present) cps = interfaceControlPoints(space, region_);
-    for (const MarkerConfig& m : config_.markers) {
-      if (!m.interface) continue;
-      const Marker mk = m.face ? evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper,
-                                                    gauss_face_, Eigen::MatrixXd(0, 0))
-                               : evaluateMarker(space, m.name, m.parameters);
-      for (std::size_t j = 0; j < mk.functions.size(); ++j)
-        if (mk.values(static_cast<int>(j)) != 0.0) cps.push_back(mk.functions[j]);
-    }
+    const std::vector<int> cps = interfacePoints();
     std::set<int> nodes;
     options_.interface.assign(dofs_->numDofs(), false);
     for (int k : cps) {
@@ -185,9 +197,8 @@ void BodyPreprocessor::selectInterface() {
     for (bool b : options_.interface) summary_->interface_dofs += b;
     summary_->interface_control_points = static_cast<int>(nodes.size());
     if (cps.empty()) {
-      throw InputError(Str() << config_.source.path << ": contact.region selects no control "
-                             << "point on face " << faceName(region_.direction, region_.upper)
-                             << " and no marker has interface: true: the interface is empty");
+      throw InputError(Str() << config_.source.path << ": no contact region and no marker with "
+                             << "interface: true selects a control point: the interface is empty");
     }
   }
   sid_.n_interface_control_points = summary_->interface_control_points;
@@ -273,25 +284,24 @@ void BodyPreprocessor::computeInvariants() {
   clock_.done("invariants", Str() << "mass " << sid_.mass << " kg");
 }
 
-// The contact surface (Bezier-extracted, with its collocation points) and the markers, in
-// the body frame.
+// One contact surface per region (Bezier-extracted, with its collocation points, named by
+// the region, in file order) and the markers, in the body frame.
 void BodyPreprocessor::extractSurfaces() {
   const SplineSpace& space = *space_;
   const int s = space.spaceDim();
-  if (config_.contact.present) {
+  for (const ContactConfig& c : config_.contacts) {
     ParamBox box;
-    for (std::size_t a = 0; a < region_.bounds.size(); ++a) {
-      box.lower[a] = region_.bounds[a][0];
-      box.upper[a] = region_.bounds[a][1];
+    for (std::size_t a = 0; a < c.bounds.size(); ++a) {
+      box.lower[a] = c.bounds[a][0];
+      box.upper[a] = c.bounds[a][1];
     }
-    ContactSurface cs;
     try {
-      cs = extractContactSurface(*space_, region_.direction, region_.upper ? 1 : 0, box,
-                                 config_.contact.name);
+      sid_.surfaces.push_back(
+          extractContactSurface(*space_, c.direction, c.upper ? 1 : 0, box, c.name));
     } catch (const std::invalid_argument& e) {
-      throw InputError(Str() << config_.source.path << ": contact surface: " << e.what());
+      throw InputError(Str() << config_.source.path << ": contact surface '" << c.name
+                             << "' (key '" << c.key << "'): " << e.what());
     }
-    sid_.surfaces.push_back(std::move(cs));
   }
   for (const MarkerConfig& m : config_.markers) {
     Marker mk = m.face ? evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper,

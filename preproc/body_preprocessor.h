@@ -3,11 +3,12 @@
 //
 //   geometry       the (hierarchically) refined spline space and its DOFs
 //   assembly       K, M, Ms on it                                  (preproc/assembly/)
-//   interface      the Craig-Bampton interface: the contact region's control points and
-//                  the interface markers' (preproc/geometry/contact_region.h)
+//   interface      the Craig-Bampton interface: the union of the contact regions' control
+//                  points and the interface markers' (preproc/geometry/contact_region.h)
 //   reduction      Craig-Bampton or modal, Buckens or tangent frame (preproc/reduction/)
 //   invariants     the body frame, mass properties, Ct, Cr0, Cr1, J1, Oe, Me, Ke, De
-//   surface        the contact surface (Bezier extraction, collocation points), markers
+//   surface        one contact surface per region (Bezier extraction, collocation
+//                  points), the markers
 //   visualisation  material and exact geometry for the runtime, the visualisation mesh and
 //                  the stress lines with their sampled modes
 //

@@ -6,7 +6,7 @@
 //
 // The phases of a run: preproc/igaprep_run.h; the pipeline: preproc/body_preprocessor.h
 // (geometry and global refinement, elasticity assembly, Craig-Bampton or modal reduction in
-// a Buckens or tangent frame, SID invariants, contact surface and markers), then the SID
+// a Buckens or tangent frame, SID invariants, contact surfaces and markers), then the SID
 // file (common/sid/sid_file.h), written atomically. Without -o: the geometry summary
 // (preproc/igaprep_report.h).
 #include <cmath>
@@ -25,7 +25,7 @@ constexpr const char* kUsage = R"(usage: igaprep BODY.yaml -o BODY.sid.h5 [optio
 Builds the reduced flexible body of a body file: exact NURBS geometry, global refinement
 (degree elevation, uniform then explicit knot insertion), hierarchical refinement
 (section 'hierarchy', THB by default), linear elastic assembly, Craig-Bampton or modal
-reduction in a Buckens or tangent floating frame, the SID invariants, the contact surface
+reduction in a Buckens or tangent floating frame, the SID invariants, the contact surface(s)
 with its collocation points and the markers, written to one HDF5 file
 (schemas/sid_format.md). Without -o, prints the refined geometry and hierarchy only.
 

@@ -102,24 +102,23 @@ void checkHierarchy(BodyConfig& c, const NurbsPatch& patch) {
   }
 }
 
-// The contact face off degenerate faces, the region inside the knot range and off them.
-void checkContact(const BodyConfig& c, const NurbsPatch& patch) {
-  if (!c.contact.present) return;
-  const YamlDocument& doc = c.source;
-  const YAML::Node node = doc.root["contact"];
-  const std::string face = getString(doc, node["face"], "contact.face");
-  const std::string faceWhy = degenerateFace(patch, c.contact.direction, c.contact.upper);
+// One contact region: its face off degenerate faces, its box inside the knot range and off
+// them.
+void checkContact(const YamlDocument& doc, const ContactConfig& c, const NurbsPatch& patch) {
+  const YAML::Node node = contactNode(doc, c);
+  const std::string face = getString(doc, node["face"], c.key + ".face");
+  const std::string faceWhy = degenerateFace(patch, c.direction, c.upper);
   if (!faceWhy.empty()) {
     throw inputError(
-        doc, node["face"], "contact.face",
+        doc, node["face"], c.key + ".face",
         Str() << "face '" << face << "' is degenerate (" << faceWhy << "); " << kDegenerateRule);
   }
   int s = 0;
   for (int a = 0; a < patch.paramDim(); ++a) {
-    if (a == c.contact.direction) continue;
+    if (a == c.direction) continue;
     const YAML::Node region = node["region"][s];
-    const std::string key = Str() << "contact.region[" << s << "]";
-    const double lo = c.contact.bounds[s][0], hi = c.contact.bounds[s][1];
+    const std::string key = Str() << c.key << ".region[" << s << "]";
+    const double lo = c.bounds[s][0], hi = c.bounds[s][1];
     const double u0 = patch.knots(a).front(), u1 = patch.knots(a).back();
     if (!(lo < hi) || lo < u0 || hi > u1) {
       throw inputError(doc, region, key,
@@ -136,6 +135,29 @@ void checkContact(const BodyConfig& c, const NurbsPatch& patch) {
       }
     }
     ++s;
+  }
+}
+
+// Two regions on one face share no area: the open intervals of their boxes must miss each
+// other in some direction along the face (touching is fine). Overlapping regions would
+// share interface control points and collocation points: a body touched there through both
+// surfaces would feel its contact pressure twice.
+void checkContactOverlaps(const YamlDocument& doc, const std::vector<ContactConfig>& contacts) {
+  for (std::size_t j = 1; j < contacts.size(); ++j) {
+    const ContactConfig& b = contacts[j];
+    for (std::size_t i = 0; i < j; ++i) {
+      const ContactConfig& a = contacts[i];
+      if (a.direction != b.direction || a.upper != b.upper) continue;
+      bool overlap = true;
+      for (std::size_t s = 0; s < a.bounds.size(); ++s)
+        overlap = overlap && a.bounds[s][0] < b.bounds[s][1] && b.bounds[s][0] < a.bounds[s][1];
+      if (!overlap) continue;
+      throw inputError(doc, contactNode(doc, b)["region"], b.key + ".region",
+                       Str() << "the region overlaps " << a.key << " ('" << a.name << "') on face "
+                             << faceName(a.direction, a.upper)
+                             << ": they would share interface control points and collocation "
+                             << "points; make the regions disjoint (touching is fine)");
+    }
   }
 }
 
@@ -183,7 +205,8 @@ void checkBodyConfig(BodyConfig& c, double memory_limit_bytes) {
       throw inputError(doc, doc.root["hierarchy"]["truncated"], "hierarchy.truncated", e.what());
     }
   }
-  checkContact(c, exact);
+  for (const ContactConfig& contact : c.contacts) checkContact(doc, contact, exact);
+  checkContactOverlaps(doc, c.contacts);
   checkMarkers(c, exact);
   invertStressLines(doc, exact, c.visualisation);
 }

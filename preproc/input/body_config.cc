@@ -140,8 +140,8 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
   for (const auto& m : markers) interfaceMarker = interfaceMarker || m.interface;
   if (node && r->method == ReductionMethod::kCraigBampton && !hasContact && !interfaceMarker) {
     throw inputError(doc, where, "reduction.method",
-                     "craig_bampton needs an interface: a contact region (key 'contact') or a "
-                     "marker with 'interface: true'");
+                     "craig_bampton needs an interface: a contact region (key 'contact' or "
+                     "'contacts') or a marker with 'interface: true'");
   }
   if (r->method == ReductionMethod::kModal && r->normal_modes < 1) {
     throw inputError(doc, node["normal_modes"], "reduction.normal_modes",
@@ -189,28 +189,59 @@ void readHierarchy(const YamlDocument& doc, const YAML::Node& h, int d, BodyConf
   }
 }
 
-// Reads `contact`: the face (one of the patch's) and one [lo, hi] per direction along it.
-void readContact(const YamlDocument& doc, const YAML::Node& node, int d, ContactConfig* c) {
-  if (!node) return;
-  c->present = true;
-  c->name = getString(doc, node["name"], "contact.name");
-  const std::string face = getString(doc, node["face"], "contact.face");
-  parseFaceName(face, &c->direction, &c->upper);  // the schema's enum has checked the name
-  if (c->direction >= d) {
-    throw inputError(doc, node["face"], "contact.face",
+// Reads one contact region (at `key`): the face (one of the patch's) and one [lo, hi] per
+// direction along it.
+ContactConfig readContact(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
+                          int item, int d) {
+  ContactConfig c;
+  c.key = key;
+  c.item = item;
+  c.name = getString(doc, node["name"], key + ".name");  // `contact`: the schema's default
+  const std::string face = getString(doc, node["face"], key + ".face");
+  parseFaceName(face, &c.direction, &c.upper);  // the schema's enum has checked the name
+  if (c.direction >= d) {
+    throw inputError(doc, node["face"], key + ".face",
                      Str() << "face '" << face << "' does not exist on a patch with " << d
                            << " parametric directions");
   }
   const YAML::Node region = node["region"];
   if (static_cast<int>(region.size()) != d - 1) {
-    throw inputError(doc, region, "contact.region",
+    throw inputError(doc, region, key + ".region",
                      Str() << "expected one [lo, hi] pair per parametric direction along the "
                            << "face (" << d - 1 << "), found " << region.size());
   }
   for (int s = 0; s < d - 1; ++s) {
-    const std::string key = Str() << "contact.region[" << s << "]";
-    c->bounds.push_back({getDouble(doc, region[s][0], key), getDouble(doc, region[s][1], key)});
+    const std::string k = Str() << key << ".region[" << s << "]";
+    c.bounds.push_back({getDouble(doc, region[s][0], k), getDouble(doc, region[s][1], k)});
   }
+  return c;
+}
+
+// Reads `contact` (the short form: one region) or `contacts` (named regions, file order),
+// not both; each region's name once (it names the SID's /contact_surfaces group).
+std::vector<ContactConfig> readContacts(const YamlDocument& doc, int d) {
+  const YAML::Node one = doc.root["contact"];
+  const YAML::Node list = doc.root["contacts"];
+  if (one && list) {
+    throw inputError(doc, list, "contacts",
+                     "give either 'contact' (one region) or 'contacts' (a list of named "
+                     "regions), not both");
+  }
+  std::vector<ContactConfig> out;
+  if (one) out.push_back(readContact(doc, one, "contact", -1, d));
+  for (std::size_t i = 0; list && i < list.size(); ++i) {
+    const std::string key = Str() << "contacts[" << i << "]";
+    ContactConfig c = readContact(doc, list[i], key, static_cast<int>(i), d);
+    for (const ContactConfig& other : out) {
+      if (other.name == c.name) {
+        throw inputError(doc, list[i]["name"], key + ".name",
+                         Str() << "name '" << c.name << "' is used twice (also " << other.key
+                               << ".name): each names a contact surface of the SID file");
+      }
+    }
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 // Reads one marker: a point (parameters, one per direction) or a face (3D bodies).
@@ -328,9 +359,9 @@ BodyConfig readBodyConfig(YamlDocument doc) {
       perDirection(doc, r ? r["insert_knots"] : YAML::Node(), "refinement.insert_knots", d);
   parseInsert(doc, r ? r["insert"] : YAML::Node(), d, c);
   readHierarchy(doc, root["hierarchy"], d, c);
-  readContact(doc, root["contact"], d, &c.contact);
+  c.contacts = readContacts(doc, d);
   readMarkers(doc, root["markers"], d, &c.markers);
-  parseReduction(doc, root["reduction"], c.contact.present, c.markers, &c.reduction);
+  parseReduction(doc, root["reduction"], !c.contacts.empty(), c.markers, &c.reduction);
   c.visualisation = readVisualisation(doc, root["visualisation"], d);
   c.source = std::move(doc);
   return c;
@@ -350,6 +381,11 @@ BodyConfig loadBodyConfig(const std::string& path, double memory_limit_bytes,
 }
 
 const char* toString(GeometryKind geometry) { return spell(kGeometryKinds, geometry); }
+
+YAML::Node contactNode(const YamlDocument& doc, const ContactConfig& contact) {
+  const YAML::Node& root = doc.root;  // const: looking up creates no entries
+  return contact.item < 0 ? root["contact"] : root["contacts"][contact.item];
+}
 
 NurbsPatch refinedPatch(const BodyConfig& config) {
   return ffriga::refinedPatch(exactPatch(config.geometry), config.refinement);

@@ -1,15 +1,15 @@
 // The body file of igaprep (schemas/body.schema.json): material, exact geometry, refinement,
-// hierarchy, contact region, markers, reduction and visualisation of one flexible body, SI
+// hierarchy, contact regions, markers, reduction and visualisation of one flexible body, SI
 // units. Read in two phases, each error naming the file, the YAML line and the key:
 //
 //   read   (body_config.cc) the schema, then every value into BodyConfig, with the checks
 //          the document alone decides (list lengths per parametric direction, knot vectors,
-//          names used twice, keys that need each other);
+//          names used twice, keys that need or exclude each other);
 //   check  (body_checks.cc) against the geometry the values build: the model against the
 //          patch's dimensions, the size estimate against the memory limit (before anything
 //          large is allocated), the refinement, the hierarchy's boxes (snapped onto the
-//          level grids), faces and regions off degenerate faces, markers and stress lines
-//          inside the body.
+//          level grids), faces and regions off degenerate faces and off each other, markers
+//          and stress lines inside the body.
 #pragma once
 
 #include <array>
@@ -32,12 +32,14 @@ namespace ffriga {
 const char* toString(GeometryKind geometry);
 bool parseKind(std::string_view text, GeometryKind* kind);
 
-// The contact region (schema key `contact`): a box on a boundary face, knot coordinates.
+// A contact region: a box on a boundary face, knot coordinates. The schema's short form
+// `contact` gives one (named "contact" by default), `contacts` several, each named.
 struct ContactConfig {
-  bool present = false;
-  std::string name = "contact";
-  int direction = 1;                          // parametric direction normal to the face
-  bool upper = true;                          // face at the upper end of the direction
+  std::string key = "contact";   // the YAML key it came from ("contacts[1]"), for errors
+  int item = -1;                 // its index in `contacts`; -1: the short form `contact`
+  std::string name = "contact";  // of its contact surface in the SID file
+  int direction = 1;             // parametric direction normal to the face
+  bool upper = true;             // face at the upper end of the direction
   std::vector<std::array<double, 2>> bounds;  // per remaining direction, increasing order
 };
 
@@ -83,8 +85,8 @@ struct BodyConfig {
   // Hierarchical refinement of the globally refined patch (levels = 1: none). After the
   // checks the boxes are snapped onto the level grids (HierarchicalSpace's box semantics).
   HierarchyOptions hierarchy;
-  bool global_reference = false;  // hierarchy.as_global_reference
-  ContactConfig contact;
+  bool global_reference = false;        // hierarchy.as_global_reference
+  std::vector<ContactConfig> contacts;  // file order; empty: no contact region
   std::vector<MarkerConfig> markers;
   ReductionConfig reduction;
   VisualisationConfig visualisation;
@@ -101,6 +103,10 @@ BodyConfig parseBodyConfig(YamlDocument doc, double memory_limit_bytes = 0.0);
 
 // The read phase alone (no geometry is built).
 BodyConfig readBodyConfig(YamlDocument doc);
+
+// The YAML node of a contact region (`contact` or `contacts[item]`), for errors found after
+// the read phase.
+YAML::Node contactNode(const YamlDocument& doc, const ContactConfig& contact);
 
 // The body's refined patch and spline space (preproc/geometry/body_geometry.h).
 NurbsPatch refinedPatch(const BodyConfig& config);

@@ -23,23 +23,23 @@ std::vector<double> knotsIn(const KnotVector& U, double lo, double hi) {
 // The elements that touch the contact face inside the contact region, as (lower, upper)
 // corners with the face direction's lower bound (the depth of the layer next to the face).
 using FaceElement = std::array<double, 5>;
-std::set<FaceElement> contactElements(const BodyConfig& c, const HierarchicalSpace& s) {
-  const int dn = c.contact.direction;
+std::set<FaceElement> contactElements(const ContactConfig& c, const HierarchicalSpace& s) {
+  const int dn = c.direction;
   std::set<FaceElement> out;
   for (int e = 0; e < s.numElements(); ++e) {
     const ElementBox b = s.element(e);
-    const double face = c.contact.upper ? s.levelKnots(0)[dn].knots().back()
+    const double face = c.upper ? s.levelKnots(0)[dn].knots().back()
                                         : s.levelKnots(0)[dn].knots().front();
-    if ((c.contact.upper ? b.upper[dn] : b.lower[dn]) != face) continue;
+    if ((c.upper ? b.upper[dn] : b.lower[dn]) != face) continue;
     FaceElement f{};
-    f[0] = c.contact.upper ? b.lower[dn] : b.upper[dn];
+    f[0] = c.upper ? b.lower[dn] : b.upper[dn];
     bool inside = true;
     int r = 0;
     for (int a = 0; a < s.paramDim(); ++a) {
       if (a == dn) continue;
       // Elements overlapping the region's interior; they must lie inside it (checked below
       // through the area sum).
-      inside = inside && b.upper[a] > c.contact.bounds[r][0] && b.lower[a] < c.contact.bounds[r][1];
+      inside = inside && b.upper[a] > c.bounds[r][0] && b.lower[a] < c.bounds[r][1];
       f[1 + 2 * r] = b.lower[a];
       f[2 + 2 * r] = b.upper[a];
       ++r;
@@ -59,15 +59,16 @@ void checkSameContactElements(const std::string& stem, int from, int to) {
     for (const char* kind : {"_h", "_g"}) {
       const BodyConfig c = loadBodyConfig(dir + stem + kind + std::to_string(n) + ".yaml");
       INFO(stem << kind << n);
-      REQUIRE(c.contact.present);
-      const std::set<FaceElement> el = contactElements(c, bodySpace(c));
+      REQUIRE(c.contacts.size() == 1);
+      const ContactConfig& contact = c.contacts[0];
+      const std::set<FaceElement> el = contactElements(contact, bodySpace(c));
       double area = 0.0, region = 1.0;
-      for (const auto& b : c.contact.bounds) region *= b[1] - b[0];
+      for (const auto& b : contact.bounds) region *= b[1] - b[0];
       for (const FaceElement& f : el) {
         double a = 1.0;
-        for (std::size_t r = 0; r < c.contact.bounds.size(); ++r) {
-          CHECK(f[1 + 2 * r] >= c.contact.bounds[r][0]);  // no element sticks out
-          CHECK(f[2 + 2 * r] <= c.contact.bounds[r][1]);
+        for (std::size_t r = 0; r < contact.bounds.size(); ++r) {
+          CHECK(f[1 + 2 * r] >= contact.bounds[r][0]);  // no element sticks out
+          CHECK(f[2 + 2 * r] <= contact.bounds[r][1]);
           a *= f[2 + 2 * r] - f[1 + 2 * r];
         }
         area += a;
