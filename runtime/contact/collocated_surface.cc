@@ -97,4 +97,13 @@ double CollocatedSurface::size() const {
   return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
 }
 
+SurfacePoint CollocatedSurface::centre(const Eigen::MatrixXd& points) const {
+  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
+  int e = surface.findElement(mid.data());
+  if (e < 0) e = 0;
+  SurfacePoint sp;
+  surface.evaluate(e, mid.data(), points, 1, sp);
+  return sp;
+}
+
 }  // namespace ffriga

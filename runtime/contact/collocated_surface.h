@@ -47,6 +47,9 @@ struct CollocatedSurface {
   Eigen::VectorXd bodyPoint(int i, const Eigen::VectorXd& u) const;
   // The diagonal of the surface's undeformed control points' box (m).
   double size() const;
+  // The surface point at the centre of its parameter domain, with first derivatives, for
+  // control points `points` (one row per body control point: undeformed, or deformed world).
+  SurfacePoint centre(const Eigen::MatrixXd& points) const;
 };
 
 }  // namespace ffriga

@@ -78,14 +78,9 @@ ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& b
     w.hi = w.hi.cwiseMax(x);
   }
   (void)body;
-  const ExtractedSurface& surface = side.surface;
-  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
-  int e = surface.findElement(mid.data());
-  if (e < 0) e = 0;
-  SurfacePoint sp;
-  surface.evaluate(e, mid.data(), w.points, 1, sp);
+  const SurfacePoint sp = side.centre(w.points);
   w.mid_x = sp.x;
-  w.mid_n = (pose.A.determinant() < 0.0 ? -1.0 : 1.0) * surface.normal(sp.dx);
+  w.mid_n = (pose.A.determinant() < 0.0 ? -1.0 : 1.0) * side.surface.normal(sp.dx);
   return w;
 }
 

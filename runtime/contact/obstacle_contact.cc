@@ -25,8 +25,8 @@ Eigen::Vector3d ObstacleContact::world(const BodyPose& pa, const Eigen::VectorXd
   return x;
 }
 
-void ObstacleContact::worldBox(const BodyPose& pa, Eigen::Vector3d& lo, Eigen::Vector3d& hi) const {
-  const Eigen::VectorXd u = side_.displacements(pa.q);
+void ObstacleContact::worldBox(const BodyPose& pa, const Eigen::VectorXd& u, Eigen::Vector3d& lo,
+                               Eigen::Vector3d& hi) const {
   lo.setConstant(std::numeric_limits<double>::infinity());
   hi = -lo;
   for (std::size_t i = 0; i < side_.cps.size(); ++i) {
@@ -46,8 +46,9 @@ void ObstacleContact::addForces(const ForceContext& at, std::vector<Eigen::Vecto
 }
 
 double ObstacleContact::boxGap(const ForceContext& at) const {
+  const BodyPose& pa = at.pose(bodyA());
   Eigen::Vector3d lo, hi;
-  worldBox(at.pose(bodyA()), lo, hi);  // the surface is inside its control points' hull
+  worldBox(pa, side_.displacements(pa.q), lo, hi);  // the surface is inside its points' hull
   return obstacle_.boxGap(lo, hi);
 }
 
@@ -58,10 +59,11 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
   terms_formed_ = false;
   body_ = &A;
   pose_ = pa;
+  // The surface's control points' displacements, once: for the box and for the points.
+  const Eigen::VectorXd u = side_.displacements(pa.q);
   Eigen::Vector3d lo, hi;
-  worldBox(pa, lo, hi);
+  worldBox(pa, u, lo, hi);
   if (obstacle_.boxGap(lo, hi) > margin_) return;  // apart: no work
-  const Eigen::VectorXd u = A.nq() > 0 ? side_.displacements(pa.q) : Eigen::VectorXd();
   const int nc = side_.numPoints();
   searches_ += nc;
   Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(A.nq());
@@ -124,15 +126,10 @@ Penetration ObstacleContact::deepestPenetration(const ForceContext& at) const {
 
 void ObstacleContact::surfaceCentre(const BodyPose& pa, Eigen::Vector3d& x,
                                     Eigen::Vector3d& n) const {
-  const ExtractedSurface& surface = side_.surface;
-  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
-  int e = surface.findElement(mid.data());
-  if (e < 0) e = 0;
-  SurfacePoint sp;
-  surface.evaluate(e, mid.data(), side_.P0, 1, sp);
+  const SurfacePoint sp = side_.centre(side_.P0);
   x = world(pa, sp.x);
   n.setZero();
-  n.head(dim_) = pa.A * surface.normal(sp.dx);  // the body's outward normal, turned
+  n.head(dim_) = pa.A * side_.surface.normal(sp.dx);  // the body's outward normal, turned
 }
 
 }  // namespace ffriga

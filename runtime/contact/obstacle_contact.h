@@ -50,8 +50,10 @@ class ObstacleContact : public SurfaceContact {
   void surfaceCentre(const BodyPose& pa, Eigen::Vector3d& x, Eigen::Vector3d& n) const;
 
  private:
-  // World control points of the surface at pa: their box.
-  void worldBox(const BodyPose& pa, Eigen::Vector3d& lo, Eigen::Vector3d& hi) const;
+  // The box of the surface's control points in the world at pa, displaced by u
+  // (CollocatedSurface::displacements).
+  void worldBox(const BodyPose& pa, const Eigen::VectorXd& u, Eigen::Vector3d& lo,
+                Eigen::Vector3d& hi) const;
   Eigen::Vector3d world(const BodyPose& pa, const Eigen::VectorXd& xb) const;
 
   CollocatedSurface side_;
