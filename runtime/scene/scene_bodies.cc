@@ -58,6 +58,9 @@ std::set<std::string> checkObstacleNames(const YamlDocument& doc,
     if (name == "ground")
       throw inputError(doc, obstacles[o]["name"], key,
                        "'ground' is reserved for the inertial frame (name the plane 'floor')");
+    if (name.find('.') != std::string::npos)
+      throw inputError(doc, obstacles[o]["name"], key,
+                       "an obstacle name cannot contain '.' (a contact pair's BODY.REGION)");
     if (bodies.count(name) || !names.insert(name).second)
       throw inputError(doc, obstacles[o]["name"], key,
                        Str() << "name '" << name << "' is used twice (bodies and obstacles "
