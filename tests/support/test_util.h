@@ -1,9 +1,13 @@
-// Helpers shared by the unit tests: seeded random numbers and random knot vectors.
+// Helpers shared by the unit tests: seeded random numbers, random knot vectors, and texts
+// (scene files) with one part replaced.
 #pragma once
 
 #include <algorithm>
 #include <random>
+#include <string>
 #include <vector>
+
+#include <catch2/catch.hpp>
 
 #include "common/splines/knot_vector.h"
 #include "common/splines/nurbs_patch.h"
@@ -50,6 +54,13 @@ inline NurbsPatch randomPatch(int d, int s) {
   Eigen::VectorXd w(n);
   for (int k = 0; k < n; ++k) w(k) = uniform(0.3, 2.0);
   return NurbsPatch(U, P, w);
+}
+
+// `s` with the first occurrence of `from` replaced by `to` (the test fails if there is none).
+inline std::string replaced(std::string s, const std::string& from, const std::string& to) {
+  const std::size_t pos = s.find(from);
+  REQUIRE(pos != std::string::npos);
+  return s.replace(pos, from.size(), to);
 }
 
 }  // namespace ffriga::test

@@ -26,6 +26,7 @@
 #include "runtime/system/multibody_system.h"
 #include "tests/support/surface_fixtures.h"
 #include "tests/support/synthetic_bodies.h"
+#include "tests/support/test_util.h"
 
 using namespace ffriga;
 
@@ -721,12 +722,6 @@ std::string sceneError(const std::string& text) {
   return "no error";
 }
 
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-  const std::size_t pos = s.find(from);
-  REQUIRE(pos != std::string::npos);
-  return s.replace(pos, from.size(), to);
-}
-
 }  // namespace
 
 TEST_CASE("obstacle contact scene: a ball over a floor builds one obstacle pair", "[contact]") {
@@ -751,7 +746,7 @@ TEST_CASE("obstacle contact scene: a ball over a floor builds one obstacle pair"
   CHECK(std::abs(scene.system->contactGap(y.data()) - 1e-4) <= 1e-16);
   // The body named second works as well: the body is side A whichever order the file gives.
   const Scene swapped = buildScene(
-      parseYamlText(replaced(kBallScene, "bodies: [ball, floor]", "bodies: [floor, ball]"),
+      parseYamlText(test::replaced(kBallScene, "bodies: [ball, floor]", "bodies: [floor, ball]"),
                     "scene.yaml"),
       {}, ballLoader(ball2d(0.01)));
   CHECK(swapped.system->contact(0).bodyA() == 0);
@@ -761,28 +756,28 @@ TEST_CASE("obstacle contact scene: a ball over a floor builds one obstacle pair"
 TEST_CASE("obstacle contact scene: bad obstacles name file, line and key", "[contact]") {
   CHECK(sceneError(kBallScene) == "no error");
   // An axisymmetric scene: a plane tilted off the axis, a plate or a sphere off it.
-  CHECK_THAT(sceneError(replaced(kBallScene, "normal: [0, 1, 0]", "normal: [0.1, 1, 0]")),
+  CHECK_THAT(sceneError(test::replaced(kBallScene, "normal: [0, 1, 0]", "normal: [0.1, 1, 0]")),
              Catch::Contains("scene.yaml:9: key 'obstacles[0].plane'") &&
                  Catch::Contains("an axisymmetric scene needs a plane normal to its axis"));
-  CHECK_THAT(sceneError(replaced(kBallScene, "{point: [0, 0, 0], normal: [0, 1, 0]}",
+  CHECK_THAT(sceneError(test::replaced(kBallScene, "{point: [0, 0, 0], normal: [0, 1, 0]}",
                                  "{point: [0.2, 0, 0], normal: [0, 1, 0], radius: 0.5}")),
              Catch::Contains("scene.yaml:9: key 'obstacles[0].plane'") &&
                  Catch::Contains("finite ones centred on it"));
-  CHECK_THAT(sceneError(replaced(kBallScene, "plane: {point: [0, 0, 0], normal: [0, 1, 0]}",
+  CHECK_THAT(sceneError(test::replaced(kBallScene, "plane: {point: [0, 0, 0], normal: [0, 1, 0]}",
                                  "sphere: {centre: [0.001, -1, 0], radius: 1.0}")),
              Catch::Contains("scene.yaml:9: key 'obstacles[0].sphere'") &&
                  Catch::Contains("an axisymmetric scene needs a sphere centred on its axis"));
   // A plane normal along -y is normal to the axis (the floor is a ceiling then).
-  CHECK(sceneError(replaced(kBallScene, "{point: [0, 0, 0], normal: [0, 1, 0]}",
+  CHECK(sceneError(test::replaced(kBallScene, "{point: [0, 0, 0], normal: [0, 1, 0]}",
                             "{point: [0, 0.1, 0], normal: [0, -1, 0]}")) == "no error");
   // The ball placed 5 mm into the floor: its bottom pole is 5 mm deep.
   CHECK_THAT(
-      sceneError(replaced(kBallScene, "position: [0, 0.0101, 0]", "position: [0, 0.005, 0]")),
+      sceneError(test::replaced(kBallScene, "position: [0, 0.0101, 0]", "position: [0, 0.005, 0]")),
       Catch::Contains("scene.yaml:11: key 'contacts[0]'") &&
           Catch::Contains("'ball' and 'floor' start 0.005 m into each other") &&
           Catch::Contains("key penetration_tolerance"));
   // ... and 5 mm into a sphere on the axis below it.
-  CHECK_THAT(sceneError(replaced(kBallScene, "plane: {point: [0, 0, 0], normal: [0, 1, 0]}",
+  CHECK_THAT(sceneError(test::replaced(kBallScene, "plane: {point: [0, 0, 0], normal: [0, 1, 0]}",
                                  "sphere: {centre: [0, -0.0049, 0], radius: 0.01}")),
              Catch::Contains("scene.yaml:11: key 'contacts[0]'") &&
                  Catch::Contains("'ball' and 'floor' start 0.005 m into each other"));
@@ -805,13 +800,13 @@ TEST_CASE("contact regions: a pair names BODY.REGION of a body with several", "[
     }
     return "no error";
   };
-  const std::string named = replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.bottom, floor]");
+  const std::string named = test::replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.bottom, floor]");
   const Scene scene = build(named);
   CHECK(scene.system->contact(0).regionName(0) == "bottom");
   CHECK(scene.system->contact(0).regionName(1).empty());
   CHECK(scene.system->contact(0).name() == "ball.bottom-floor");  // default: the two entries
   // bodies[].surface names the region where the pair does not.
-  const Scene bySurface = build(replaced(kBallScene, "velocity: [0, -0.1, 0]",
+  const Scene bySurface = build(test::replaced(kBallScene, "velocity: [0, -0.1, 0]",
                                          "velocity: [0, -0.1, 0]\n    surface: bottom"));
   CHECK(bySurface.system->contact(0).regionName(0) == "bottom");
   // Without a name the choice is the user's to make; unknown names list the regions.
@@ -819,14 +814,14 @@ TEST_CASE("contact regions: a pair names BODY.REGION of a body with several", "[
              Catch::Contains("scene.yaml:11: key 'contacts[0].bodies[0]'") &&
                  Catch::Contains("body 'ball' has 2 contact regions (top, bottom): name one, "
                                  "as ball.top"));
-  CHECK_THAT(error(replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.side, floor]")),
+  CHECK_THAT(error(test::replaced(kBallScene, "bodies: [ball, floor]", "bodies: [ball.side, floor]")),
              Catch::Contains("key 'contacts[0].bodies[0]'") &&
                  Catch::Contains("body 'ball' has no contact region 'side' (its regions: top, "
                                  "bottom)"));
-  CHECK_THAT(error(replaced(named, "[ball.bottom, floor]", "[ball.bottom, floor.top]")),
+  CHECK_THAT(error(test::replaced(named, "[ball.bottom, floor]", "[ball.bottom, floor.top]")),
              Catch::Contains("key 'contacts[0].bodies[1]'") &&
                  Catch::Contains("obstacle 'floor' has no contact regions"));
-  CHECK_THAT(error(replaced(named, "  - name: ball\n", "  - name: ba.ll\n")),
+  CHECK_THAT(error(test::replaced(named, "  - name: ball\n", "  - name: ba.ll\n")),
              Catch::Contains("key 'bodies[0].name'") &&
                  Catch::Contains("a body name cannot contain '.'"));
 }

@@ -17,6 +17,7 @@
 #include "runtime/simulation/output_sampler.h"
 #include "runtime/bodies/quasi_static_rule.h"
 #include "tests/support/surface_fixtures.h"
+#include "tests/support/test_util.h"
 
 using namespace ffriga;
 
@@ -149,12 +150,6 @@ std::string errorOf(const std::string& text, const FlexibleBodySid& sid) {
   return "no error";
 }
 
-std::string replace(std::string s, const std::string& from, const std::string& to) {
-  const std::size_t pos = s.find(from);
-  REQUIRE(pos != std::string::npos);
-  return s.replace(pos, from.size(), to);
-}
-
 }  // namespace
 
 TEST_CASE("scene: two rigid axisymmetric spheres bounce back elastically", "[scene]") {
@@ -233,11 +228,11 @@ TEST_CASE("scene: integrator.linear_solver selects the Newton matrix", "[scene]"
   const Scene byDefault = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
   CHECK(byDefault.settings.integrator.linear_solver == LinearSolverKind::kAuto);
   const Scene dense = buildScene(
-      parseYamlText(replace(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: dense"),
+      parseYamlText(test::replaced(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: dense"),
                     "scene.yaml"),
       {}, fakeLoader(sid));
   CHECK(dense.settings.integrator.linear_solver == LinearSolverKind::kEigenDense);
-  CHECK_THAT(errorOf(replace(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: lu"), sid),
+  CHECK_THAT(errorOf(test::replaced(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  linear_solver: lu"), sid),
              Catch::Contains("key 'integrator.linear_solver'"));
 }
 
@@ -274,13 +269,13 @@ TEST_CASE("scene: quasi-static coordinates in the structured and dense Jacobians
   // rows d/dt q_s = a_s / (k_s tau) (quasi_static_modes.h) and must agree as without; the
   // rates themselves are a_s / (k_s tau) and 0, with a_s the dynamic acceleration.
   const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
-  const std::string text = replace(
-      replace(kScene, "    sid: sphere_a.sid.h5\n",
+  const std::string text = test::replaced(
+      test::replaced(kScene, "    sid: sphere_a.sid.h5\n",
               "    sid: sphere_a.sid.h5\n    quasi_static: {above_first_elastic: 3}\n"),
       "    sid: sphere_b.sid.h5\n", "    sid: sphere_b.sid.h5\n    quasi_static: {above_first_elastic: 3}\n");
   Scene scene = buildScene(parseYamlText(text, "scene.yaml"), {}, fakeLoader(sid));
-  const std::string dynamic = replace(
-      replace(kScene, "    sid: sphere_a.sid.h5\n", "    sid: sphere_a.sid.h5\n    quasi_static: false\n"),
+  const std::string dynamic = test::replaced(
+      test::replaced(kScene, "    sid: sphere_a.sid.h5\n", "    sid: sphere_a.sid.h5\n    quasi_static: false\n"),
       "    sid: sphere_b.sid.h5\n", "    sid: sphere_b.sid.h5\n    quasi_static: false\n");
   Scene plain = buildScene(parseYamlText(dynamic, "scene.yaml"), {}, fakeLoader(sid));
   REQUIRE(plain.system->body(0).quasiStatic().empty());
@@ -342,7 +337,7 @@ TEST_CASE("scene: quasi-static coordinates in the structured and dense Jacobians
 TEST_CASE("scene: quasi-static rule, its keys and its bad input", "[scene]") {
   const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
   auto withA = [](const std::string& lines) {
-    return replace(kScene, "    sid: sphere_a.sid.h5\n", "    sid: sphere_a.sid.h5\n" + lines);
+    return test::replaced(kScene, "    sid: sphere_a.sid.h5\n", "    sid: sphere_a.sid.h5\n" + lines);
   };
   // Default: 4 x the lowest elastic frequency (quasi_static_rule.h), as the explicit factor.
   Scene byDefault = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
@@ -384,7 +379,7 @@ TEST_CASE("scene: quasi-static rule, its keys and its bad input", "[scene]") {
   // Warnings: damped dynamic modes below the cutoff (the test sphere's SID damps its modes
   // with zeta 0.02; scale 0 removes that).
   auto damping = [&](const std::string& a, const std::string& b) {
-    return replace(withA("    damping: " + a + "\n"), "    sid: sphere_b.sid.h5\n",
+    return test::replaced(withA("    damping: " + a + "\n"), "    sid: sphere_b.sid.h5\n",
                    "    sid: sphere_b.sid.h5\n    damping: " + b + "\n");
   };
   Scene damped = buildScene(parseYamlText(damping("{modal_damping_ratio: 0.01}", "{scale: 0}"),
@@ -412,15 +407,15 @@ TEST_CASE("benchmark: flexible axisymmetric spheres, nq = 92", "[.benchmark]") {
 TEST_CASE("scene: bad input names file, line and key", "[scene]") {
   const FlexibleBodySid sid = rigidSphere2d(0.01);
   CHECK(errorOf(kScene, sid) == "no error");
-  CHECK_THAT(errorOf(replace(kScene, "bodies: [lower, upper]", "bodies: [lower, uper]"), sid),
+  CHECK_THAT(errorOf(test::replaced(kScene, "bodies: [lower, upper]", "bodies: [lower, uper]"), sid),
              Catch::Contains("scene.yaml:13: key 'contacts[0].bodies[1]'") &&
                  Catch::Contains("found 'uper'"));
-  CHECK_THAT(errorOf(replace(kScene, "penalty_factor: 1.0e13", "penalty_factor: -1.0e13"), sid),
+  CHECK_THAT(errorOf(test::replaced(kScene, "penalty_factor: 1.0e13", "penalty_factor: -1.0e13"), sid),
              Catch::Contains("scene.yaml:14: key 'contacts[0].penalty_factor'"));
-  CHECK_THAT(errorOf(replace(kScene, "sid: sphere_b.sid.h5", "sid: nowhere.sid.h5"), sid),
+  CHECK_THAT(errorOf(test::replaced(kScene, "sid: sphere_b.sid.h5", "sid: nowhere.sid.h5"), sid),
              Catch::Contains("scene.yaml:8: key 'bodies[1].sid'") &&
                  Catch::Contains("SID file 'nowhere.sid.h5' not found"));
-  CHECK_THAT(errorOf(replace(kScene, "position: [0, 0, 0]", "position: [0.1, 0, 0]"), sid),
+  CHECK_THAT(errorOf(test::replaced(kScene, "position: [0, 0, 0]", "position: [0.1, 0, 0]"), sid),
              Catch::Contains("key 'bodies[0].position'"));
 }
 
@@ -444,7 +439,7 @@ TEST_CASE("scene: SID names resolve against the scene folder, then each --sid-pa
   std::ofstream("sid_path_test/second/path_a.sid.h5") << "fake";
   std::ofstream("sid_path_test/first/path_b.sid.h5") << "fake";
   // Own file names: other scene tests (maybe running in parallel) write sphere_?.sid.h5.
-  const std::string text = replace(replace(kScene, "sphere_a", "path_a"), "sphere_b", "path_b");
+  const std::string text = test::replaced(test::replaced(kScene, "sphere_a", "path_a"), "sphere_b", "path_b");
   // The scene "lives" in sid_path_test/, which holds neither file itself.
   const Scene scene = buildScene(parseYamlText(text, "sid_path_test/scene.yaml"),
                                  {"sid_path_test/first", "sid_path_test/second"},
