@@ -9,6 +9,10 @@
   RESULT_active_points.png  collocation points in contact
   RESULT_stress_lines.png   von Mises stress along the SIDs' stress lines at the force peak,
                             with Hertz's field where the result has it (paper Fig. 10)
+  RESULT_pressure.png       contact pressure at the collocation points at each pair's force
+                            peak against the distance from the contact axis (axisymmetric
+                            bodies: the radius), with Hertz's p0 sqrt(1 - r^2/a^2) where the
+                            stress lines hold Hertz's a and p0 for the same force
 
 Pictures without data (no contact pairs, no stress lines) are skipped. Everything is read
 from the file (schemas/result_format.md); nothing is recomputed but Hertz's force history
@@ -190,6 +194,57 @@ def plot_stress_lines(f, base, written):
     save(fig, base + "_stress_lines.png", written)
 
 
+def hertz_patch(f, force):
+    """Hertz's (a, p0) from the stress lines recorded at the same force, else None."""
+    if "stress_lines" not in f or f["stress_lines"].attrs["contact_force_N"] != force:
+        return None
+    for b in f["stress_lines"]:
+        for l in f["stress_lines"][b]:
+            a = f["stress_lines"][b][l].attrs
+            if "hertz_contact_radius_m" in a and np.isfinite(a["hertz_contact_radius_m"]):
+                return a["hertz_contact_radius_m"], a["hertz_max_pressure_Pa"]
+    return None
+
+
+def plot_pressure(f, base, written):
+    pairs = [p for p in f.get("contacts", {}) if "peak_pressure" in f["contacts"][p]
+             and f["contacts"][p]["peak_pressure"].attrs["time_s"] >= 0]
+    if not pairs:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for pair in pairs:
+        g = f["contacts"][pair]["peak_pressure"]
+        x, p, w = g["position"][()], g["pressure"][()], g["weight"][()]
+        body = f["contacts"][pair].attrs["body_a"]
+        if f["bodies"][body].attrs["model"] == "axisymmetric":
+            r = np.abs(x[:, 0])
+        else:  # about the axis through the pressure's centre along the resultant
+            n = g["normal"][()]
+            c = (p * w) @ x / max(np.sum(p * w), 1e-300)
+            e = np.sum((p * w)[:, None] * n, axis=0)
+            e = e / max(np.linalg.norm(e), 1e-300)
+            d = x - c
+            r = np.linalg.norm(d - np.outer(d @ e, e), axis=1)
+        for role in sorted(set(g["role"][()])):
+            m = g["role"][()] == role
+            ax.plot(1e3 * r[m], 1e-6 * p[m], "o", ms=4, mfc="none",
+                    label=f"ffrsim: {pair}, role {role} ({g.attrs['normal_force_N']:.2f} N, "
+                          f"t = {1e6 * g.attrs['time_s']:.2f} us)")
+        patch = hertz_patch(f, g.attrs["normal_force_N"])
+        if patch:
+            a, p0 = patch
+            s = np.linspace(0, a, 200)
+            ax.plot(1e3 * s, 1e-6 * p0 * np.sqrt(1 - (s / a) ** 2), "k--", lw=1,
+                    label=f"Hertz (a = {1e3 * a:.4f} mm, p0 = {1e-9 * p0:.3f} GPa)")
+            ax.set_xlim(0, 2e3 * a)
+    ax.set_title("contact pressure at each pair's force peak (c_p max(0, -g_n))", fontsize=10)
+    ax.set_xlabel("distance from the contact axis [mm]")
+    ax.set_ylabel("pressure [MPa]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, base + "_pressure.png", written)
+
+
 def open_result(path, swmr):
     """The result file, read with SWMR if asked (a running result); a file being closed by
     ffrsim (its final figures, a few milliseconds) is tried again."""
@@ -204,14 +259,16 @@ def open_result(path, swmr):
 
 def rows(f):
     """The output times every series has on disk: a reader of a running result sees each
-    dataset as of the writer's last flush of it, so one may be a flush ahead of another."""
+    dataset as of the writer's last flush of it, so one may be a flush ahead of another.
+    Series are the extendable datasets (unlimited first dimension); fixed-size ones (an
+    obstacle's point and normal) are not rows."""
     n = f["time"].shape[0]
     for group in ("contacts", "energy"):
         if group in f:
             for name, obj in f[group].items():
                 items = obj.values() if isinstance(obj, h5py.Group) else [obj]
                 for d in items:
-                    if isinstance(d, h5py.Dataset) and d.ndim >= 1:
+                    if isinstance(d, h5py.Dataset) and d.ndim >= 1 and d.maxshape[0] is None:
                         n = min(n, d.shape[0])
     return f["time"][:n]
 
@@ -226,6 +283,7 @@ def draw(f, base, zoom):
     plot_pair_series(f, t, base, zoom, written, "active_points", 1,
                      "collocation points in contact", "_active_points.png")
     plot_stress_lines(f, base, written)
+    plot_pressure(f, base, written)
     return t, written
 
 

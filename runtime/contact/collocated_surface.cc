@@ -1,5 +1,6 @@
 #include "runtime/contact/collocated_surface.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/base/error.h"
@@ -95,6 +96,14 @@ double CollocatedSurface::size() const {
   Eigen::MatrixXd P(cps.size(), dim);
   for (std::size_t i = 0; i < cps.size(); ++i) P.row(i) = P0.row(cps[i]);
   return (P.colwise().maxCoeff() - P.colwise().minCoeff()).norm();
+}
+
+bool CollocatedSurface::planar() const {
+  const SurfacePoint c = centre(P0);
+  const Eigen::VectorXd n = surface.normal(c.dx);
+  double off = 0.0;
+  for (const int k : cps) off = std::max(off, std::abs(n.dot(P0.row(k).transpose() - c.x)));
+  return off <= 1e-12 * size();
 }
 
 SurfacePoint CollocatedSurface::centre(const Eigen::MatrixXd& points) const {

@@ -47,6 +47,10 @@ struct CollocatedSurface {
   Eigen::VectorXd bodyPoint(int i, const Eigen::VectorXd& u) const;
   // The diagonal of the surface's undeformed control points' box (m).
   double size() const;
+  // Whether the undeformed surface is planar (a straight meridian in 2D): its control points
+  // lie within 1e-12 of its size of the tangent plane at its centre (convex hull property:
+  // then the whole surface does).
+  bool planar() const;
   // The surface point at the centre of its parameter domain, with first derivatives, for
   // control points `points` (one row per body control point: undeformed, or deformed world).
   SurfacePoint centre(const Eigen::MatrixXd& points) const;

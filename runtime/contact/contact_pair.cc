@@ -33,6 +33,10 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
     size_ = std::max(size_, s.size());
   }
   margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
+  for (Side& s : side_) s.edge_reach = s.planar() ? edgeReach() : 0.0;
+  pressure_.addRole(side_[0].weight);
+  if (options_.both_roles) pressure_.addRole(side_[1].weight);
+  pressure_.factor = options_.both_roles ? 0.5 : 1.0;
 }
 
 void ContactPair::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
@@ -94,6 +98,13 @@ double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_ed
   return std::max(0.0, std::min(edge, centre));
 }
 
+bool ContactPair::withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge,
+                                  const Eigen::VectorXd& x, const SurfaceProjection& p) {
+  if (!(st.edge_reach > 0.0)) return false;
+  const Eigen::VectorXd d = x - p.point.x;
+  return (d - n_edge.dot(d) * n_edge).norm() <= st.edge_reach;
+}
+
 ContactPair::TargetMotion ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u,
                                                     double renew) {
   auto changeAgainst = [&](const Eigen::VectorXd& r) {
@@ -137,7 +148,10 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
   // Bounding-box pre-check: apart means no work.
   for (int c = 0; c < dim_; ++c) {
-    if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) return;
+    if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) {
+      if (state) pressure_.clear();
+      return;
+    }
   }
   // Target motion of each side (header comment). A new snapshot is taken once the newest
   // is a penetration tolerance away: records then hold d_T,e below that size.
@@ -146,8 +160,9 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
                                   targetMotion(side_[1], wb.u, renew)};
   const double factor = options_.both_roles ? 0.5 : 1.0;
   ContactState s0, s1;
-  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0);
-  if (options_.both_roles) collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, motion[0], &s1);
+  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0, state != nullptr);
+  if (options_.both_roles)
+    collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, motion[0], &s1, state != nullptr);
   if (state) {
     // s1 holds forces on B: the force on A is minus that.
     state->force = s0.force - s1.force;
@@ -211,13 +226,13 @@ void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& p
   r.failed = !p.converged;
   if (!p.converged) return;
   sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
-  if (!p.orthogonal) {
-    r.beyond_edge = beyondEdgeDepth(wt, orientT * st.surface.normal(p.point.dx), x, p);
-    return;
-  }
   // World normal: the body's rule applied to world tangents, turned back if the body's
   // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
   const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
+  if (!p.orthogonal && !withinEdgeReach(st, n, x, p)) {
+    r.beyond_edge = beyondEdgeDepth(wt, n, x, p);
+    return;
+  }
   r.gap = n.dot(x - p.point.x);
   if (r.gap >= 0.0) {
     cl.valid = true;
@@ -288,7 +303,7 @@ void ContactPair::addElasticForces(const Side& st, const BodyModel& C, const Bod
 void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc,
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
                             double* hT, double factor, const TargetMotion& motion,
-                            ContactState* state) {
+                            ContactState* state, bool record) {
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_, nc = static_cast<int>(sc.xc0.rows());
@@ -315,6 +330,10 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     const PointResult& r = res[i];
     if (state) addDiagnostics(r, sc.weight(i), factor, *state);
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
+    if (record && r.active)
+      pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
+    else if (record)
+      pressure_.set(c, i, xs[i]);
   }
   addElasticForces(st, C, T, hC, hT, sums);
 }
@@ -370,8 +389,9 @@ Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& 
       const SurfaceProjection p = closestPoint(st.surface, w[1 - c].points, x, nullptr);
       if (!p.converged) continue;
       const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
-      depth[i] = p.orthogonal ? std::max(0.0, -n.dot(x - p.point.x))
-                              : beyondEdgeDepth(w[1 - c], n, x, p);
+      depth[i] = p.orthogonal || withinEdgeReach(st, n, x, p)
+                     ? std::max(0.0, -n.dot(x - p.point.x))
+                     : beyondEdgeDepth(w[1 - c], n, x, p);
     }
     for (int i = 0; i < nc; ++i) {  // in point order: the same answer on any thread count
       if (depth[i] <= deepest.depth) continue;

@@ -84,6 +84,7 @@ class ContactPair : public SurfaceContact {
   // A collocated surface, as the contact side and as the target of the other.
   struct Side : CollocatedSurface {
     std::vector<SurfaceProjection> cache;  // warm starts, one per collocation point
+    double edge_reach = 0.0;  // m, as a target: edgeReach() if planar(), else 0
     // Clearance bound (header comment), one per collocation point as a contact point.
     struct Clearance {
       bool valid = false;
@@ -129,13 +130,21 @@ class ContactPair : public SurfaceContact {
   // surface is in front of one of them), else 0.
   double beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge, const Eigen::VectorXd& x,
                          const SurfaceProjection& p) const;
+  // Whether x, whose closest point p on the target st is on its edge, lies within st's edge
+  // reach of the tangent plane at p, off the surface: then the plane holds it as if the
+  // surface went on. Only planar targets reach (flat faces of equal size meeting end-on);
+  // beside the edge of a curved region the surface would go on curving, and a contact that
+  // outgrows such a region must stop the run as before.
+  static bool withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge,
+                              const Eigen::VectorXd& x, const SurfaceProjection& p);
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   // Side c's collocation points against the other side as the target: adds the generalised
   // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three
-  // phases: which points need a search (serial), the searches (parallel), the sums (serial).
+  // phases: which points need a search (serial), the searches (parallel), the sums (serial);
+  // with `record`, role c of pressure_ too.
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
-                 const TargetMotion& motion, ContactState* state);
+                 const TargetMotion& motion, ContactState* state, bool record);
   struct PointResult;  // one collocation point's outcome (contact_pair.cc)
   struct ForceSums;    // the serial sums over the active points (contact_pair.cc)
   // Phase 1, point i of contact side sc: its body point r.xb (from the control points'

@@ -17,6 +17,7 @@ ObstacleContact::ObstacleContact(std::string name, int a, const BodyModel& A, in
   obstacle_name_ = obstacle_.name();
   size_ = side_.size();
   margin_ = options_.search_margin >= 0.0 ? options_.search_margin : 0.1 * size_;
+  pressure_.addRole(side_.weight);
 }
 
 Eigen::Vector3d ObstacleContact::world(const BodyPose& pa, const Eigen::VectorXd& xb) const {
@@ -63,17 +64,25 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
   const Eigen::VectorXd u = side_.displacements(pa.q);
   Eigen::Vector3d lo, hi;
   worldBox(pa, u, lo, hi);
-  if (obstacle_.boxGap(lo, hi) > margin_) return;  // apart: no work
+  if (obstacle_.boxGap(lo, hi) > margin_) {  // apart: no work
+    if (state) pressure_.clear();
+    return;
+  }
   const int nc = side_.numPoints();
   searches_ += nc;
   Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(A.nq());
   ContactState s;
   for (int i = 0; i < nc; ++i) {  // in point order: the same sums on any thread count
     const Eigen::VectorXd xb = side_.bodyPoint(i, u);
-    const ObstaclePoint p = obstacle_.nearest(world(pa, xb));
-    if (!p.covered || p.gap >= 0.0) continue;
+    const Eigen::Vector3d x = world(pa, xb);
+    const ObstaclePoint p = obstacle_.nearest(x);
+    if (!p.covered || p.gap >= 0.0) {
+      if (state) pressure_.set(0, i, x);
+      continue;
+    }
     const double k = options_.penalty * side_.weight(i);
     const Eigen::VectorXd n = p.normal.head(dim_);
+    if (state) pressure_.set(0, i, x, -options_.penalty * p.gap, p.normal);
     const Eigen::VectorXd f = (-k * p.gap) * n;
     A.addRigidPointForce(pa, xb, f, hA);
     if (A.nq() > 0) fbSum += side_.PhiCt.middleCols(i * dim_, dim_) * (pa.A.transpose() * f);

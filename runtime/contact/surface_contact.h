@@ -13,6 +13,7 @@
 
 #include <Eigen/Dense>
 
+#include "runtime/contact/contact_pressure.h"
 #include "runtime/forces/force_element.h"
 
 namespace ffriga {
@@ -50,6 +51,13 @@ struct ContactOptions {
   // m; < 0: 1e-6 of the larger surface's size (the initial penetration accepted, and the
   // penetration beyond a surface's edge that stops a run)
   double penetration_tolerance = -1.0;
+  // m; < 0: 1e-3 of the larger surface's size. How far beyond the edge of a planar target
+  // contact surface a collocation point may lie (laterally, off the surface) and still be
+  // held by the tangent plane at the edge (ContactPair::searchPoint): flat faces of equal
+  // size meeting end-on (rods) put their edge points on each other's edges, where the
+  // faces' slightly different lateral strains move a point just off the other face. Curved
+  // targets have none (their region's edge is where a growing contact must stop the run).
+  double edge_reach = -1.0;
 };
 
 class SurfaceContact : public ForceElement {
@@ -76,6 +84,9 @@ class SurfaceContact : public ForceElement {
   double penetrationTolerance() const {
     return options_.penetration_tolerance > 0.0 ? options_.penetration_tolerance : 1e-6 * size_;
   }
+  double edgeReach() const {
+    return options_.edge_reach >= 0.0 ? options_.edge_reach : 1e-3 * size_;
+  }
   // The deepest penetration over every collocation point, without any pre-check (a full
   // search per point: for the initial state, not for every step).
   virtual Penetration deepestPenetration(const ForceContext& at) const = 0;
@@ -83,12 +94,18 @@ class SurfaceContact : public ForceElement {
   // Counts of the closest-point searches: done, and avoided by a clearance bound.
   long long searches() const { return searches_; }
   long long searchesAvoided() const { return avoided_; }
+  // The pressure at every collocation point of each role in the last evaluation that filled
+  // a ContactState (the right-hand sides': the simulation reads their states), recorded in
+  // the serial sums of the points (O(points) per evaluation; the result file keeps it at each
+  // pair's force peak, runtime/output/peak_contact_pressure.h).
+  const ContactPressure& pressureField() const { return pressure_; }
 
  protected:
   ContactOptions options_;
   std::string obstacle_name_;
   double size_ = 0.0;
   long long searches_ = 0, avoided_ = 0;
+  ContactPressure pressure_;
 };
 
 }  // namespace ffriga

@@ -36,6 +36,10 @@ struct BdfIntegrator::Impl {
     if (flag >= 0) return;
     std::string msg = Str() << "CVODE: " << call << " failed with " << CVodeGetReturnFlagName(flag);
     if (!last_message.empty()) msg += ": " + last_message;
+    if (flag == CV_REPTD_PROJFUNC_ERR)  // runtime/system/quasi_static_projection.cc
+      msg += " (the quasi-static coordinates found no equilibrium: contact points kept "
+             "entering and leaving within one projection, as a flat face does against a "
+             "penalty stiffer than its elements; README \"Flat faces\")";
     throw ComputeError(msg);
   }
 

@@ -45,6 +45,13 @@ struct ConnectionLayout {
   Eigen::Vector3d obstacle_point = Eigen::Vector3d::Zero();
   Eigen::Vector3d obstacle_normal = Eigen::Vector3d::Zero();
   double obstacle_radius = 0.0;
+  // Contact pairs: the role of each collocation point (0: body A's points against B, 1: B's
+  // against A), its collocation weight w_i (m^2) and the roles' factor (1/2 where both roles
+  // are averaged, else 1): the rows of the pair's PressureSample
+  // (runtime/contact/contact_pressure.h).
+  std::vector<int> collocation_role;
+  Eigen::VectorXd collocation_weight;
+  double role_factor = 1.0;
 };
 
 struct SensorLayout {
@@ -79,6 +86,14 @@ struct ContactSample {
   double max_penetration = 0.0;                     // m
   double active_points = 0.0;                       // count
   double projection_failures = 0.0;                 // count
+};
+
+// A contact pair's pressure field at one state (runtime/contact/contact_pressure.h), one row
+// per collocation point as ConnectionLayout::collocation_role.
+struct PressureSample {
+  Eigen::MatrixXd position;  // n x 3, m, inertial (axisymmetric: x the radius, y the axis)
+  Eigen::VectorXd pressure;  // n, Pa: c_p max(0, -g_n)
+  Eigen::MatrixXd normal;    // n x 3, the target's unit outward normal (0 where no pressure)
 };
 
 struct JointSample {

@@ -142,18 +142,6 @@ void PeakStressLines::restore() {
   }
 }
 
-namespace {
-// Writes a whole dataset of the file in place (row-major, as h5::writeMatrix stores it).
-void overwrite(const h5::Context& c, hid_t group, const std::string& name,
-               const Eigen::MatrixXd& m) {
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  const RowMajor r = m;
-  Handle set(c.check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
-  c.check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
-          "write " + name, 0);
-}
-}  // namespace
-
 void PeakStressLines::flush() {
   if (!pending_) return;
   pending_ = false;
@@ -166,8 +154,8 @@ void PeakStressLines::flush() {
     const Line& line = lines_[k];
     const StressLinePeak& peak = summary[k];
     Handle g = h5::openGroup(c, root.id(), line.body_name + "/" + line.source->name);
-    overwrite(c, g.id(), "stress", line.stress);
-    overwrite(c, g.id(), "von_mises", line.von_mises);
+    file_.rewrite(g.id(), "stress", line.stress);
+    file_.rewrite(g.id(), "von_mises", line.von_mises);
     const Eigen::Index at = argMax(line.von_mises);
     h5::writeAttribute(c, g.id(), "von_mises_max_Pa", line.von_mises(at));
     h5::writeAttribute(c, g.id(), "von_mises_max_distance_m", line.distance(at));
@@ -183,9 +171,9 @@ void PeakStressLines::flush() {
           hertzAxisStress(line.distance(i), patch.radius, patch.max_pressure, nu);
       vm(i) = h.von_mises, sr(i) = h.sigma_r, sz(i) = h.sigma_z;
     }
-    overwrite(c, g.id(), "hertz_von_mises", vm);
-    overwrite(c, g.id(), "hertz_sigma_radial", sr);
-    overwrite(c, g.id(), "hertz_sigma_axial", sz);
+    file_.rewrite(g.id(), "hertz_von_mises", vm);
+    file_.rewrite(g.id(), "hertz_sigma_radial", sr);
+    file_.rewrite(g.id(), "hertz_sigma_axial", sz);
     h5::writeAttribute(c, g.id(), "hertz_contact_radius_m", patch.radius);
     h5::writeAttribute(c, g.id(), "hertz_max_pressure_Pa", patch.max_pressure);
     h5::writeAttribute(c, g.id(), "hertz_von_mises_max_Pa", peak.hertz_von_mises);

@@ -166,6 +166,15 @@ void ResultFile::writeRows(long rows) {
 
 void ResultFile::flushFile() { check(H5Fflush(file_.id(), H5F_SCOPE_GLOBAL), "H5Fflush", path_); }
 
+void ResultFile::rewrite(hid_t group, const std::string& name, const Eigen::MatrixXd& m) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const RowMajor r = m;
+  const h5::Context c = context();
+  h5::Handle set(c.check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open " + name), H5Dclose);
+  c.check(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, r.data()),
+          "write " + name, 0);
+}
+
 std::uint64_t ResultFile::pendingBytes() const {
   std::uint64_t bytes = 0;
   for (const auto& s : series_) bytes += chunkBytes(written_, s->pending_.size(), s->width());

@@ -111,6 +111,10 @@ class ResultFile {
   void setObjectAttribute(const std::string& object, const std::string& name,
                           const std::string& value);
 
+  // Writes a whole fixed-size dataset below `group` in place (row-major, as h5::writeMatrix
+  // stores it; the same shape): what sinks rewrite at a flush, also in SWMR mode.
+  void rewrite(hid_t group, const std::string& name, const Eigen::MatrixXd& m);
+
   // Removes an object (by its path) at close, or now outside SWMR mode.
   void removeObject(const std::string& object);
 

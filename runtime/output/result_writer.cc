@@ -34,6 +34,9 @@ ResultWriter::ResultWriter(const std::string& path, const OutputLayout& layout,
   auto restart = std::make_unique<RestartRecordWriter>(*file_, layout.state_size, rows_);
   restart_ = restart.get();
   sinks_.push_back(std::move(restart));
+  auto pressure = std::make_unique<PeakContactPressure>(*file_, layout);
+  pressure_ = pressure.get();
+  sinks_.push_back(std::move(pressure));
   try {
     flush();
   } catch (const ComputeError& e) {  // no room for even the first flush
@@ -65,6 +68,10 @@ void ResultWriter::enablePeakStressLines(std::vector<std::optional<HertzPartner>
 
 void ResultWriter::recordPeak(double t, double force, const std::vector<BodySample>& bodies) {
   if (peaks_) peaks_->recordPeak(t, force, bodies);
+}
+
+void ResultWriter::recordPressurePeak(int c, double t, double force, const PressureSample& field) {
+  if (pressure_) pressure_->recordPeak(c, t, force, field);
 }
 
 void ResultWriter::append(const OutputSample& sample) {
@@ -128,7 +135,7 @@ void ResultWriter::close() {
   }
   if (frames_) frames_written_ = frames_->frames();
   if (peaks_) peak_list_ = peaks_->peaks();
-  frames_ = nullptr, peaks_ = nullptr, restart_ = nullptr;
+  frames_ = nullptr, peaks_ = nullptr, restart_ = nullptr, pressure_ = nullptr;
   if (file_->writable()) {
     for (auto& sink : sinks_) sink->finish();
   } else {

@@ -1,6 +1,7 @@
 // The outputs of one run (schemas/result_format.md): the result file and its sinks
-// (runtime/output/output_sink.h): the rows, the sensors, the restart record and, when
-// asked for, the visualisation frames and the stresses along lines at the force peak.
+// (runtime/output/output_sink.h): the rows, the sensors, the restart record, the contact
+// pressure at each pair's force peak and, when asked for, the visualisation frames and the
+// stresses along lines at the force peak.
 //
 // The file grows as the run goes: every sample becomes one row of every series; the file is
 // flushed every `flush_rows` rows, at least every `flush_interval` seconds of wall time
@@ -19,6 +20,7 @@
 
 #include "runtime/output/output_sample.h"
 #include "runtime/output/output_sink.h"
+#include "runtime/output/peak_contact_pressure.h"
 #include "runtime/output/peak_stress_lines.h"
 #include "runtime/output/restart_record.h"
 #include "runtime/output/result_file.h"
@@ -54,6 +56,11 @@ class ResultWriter {
   bool wantsPeaks() const { return peaks_ != nullptr; }
   // A step ending at t has the largest contact force so far (N); the bodies' state there.
   void recordPeak(double t, double force, const std::vector<BodySample>& bodies);
+  // The largest normal force of contact pair c recorded so far (N; 0 before any, kept over a
+  // restart) and pair c's pressure field at a step with a larger one
+  // (runtime/output/peak_contact_pressure.h).
+  double pressurePeakForce(int c) const { return pressure_ ? pressure_->peakForce(c) : 0.0; }
+  void recordPressurePeak(int c, double t, double force, const PressureSample& field);
   // One output row.
   void append(const OutputSample& sample);
   // Writes the pending rows and flushes the file. First reserves their room on disk: if the
@@ -89,6 +96,7 @@ class ResultWriter {
   RestartRecordWriter* restart_ = nullptr;
   FrameWriter* frames_ = nullptr;
   PeakStressLines* peaks_ = nullptr;
+  PeakContactPressure* pressure_ = nullptr;
   double restart_time_ = -1.0;  // the record's time when opened for a restart
   long rows_ = 0;
   long frames_written_ = 0;

@@ -216,6 +216,7 @@ ContactOptions SceneBuilder::contactOptions(std::size_t c) const {
   o.search_margin = doubleOr(doc(), C["search_margin"], k + ".search_margin", -1.0);
   o.penetration_tolerance =
       doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
+  o.edge_reach = doubleOr(doc(), C["edge_reach"], k + ".edge_reach", -1.0);
   return o;
 }
 

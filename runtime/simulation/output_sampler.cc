@@ -98,6 +98,9 @@ OutputLayout outputLayout(const MultibodySystem& system) {
                        system.contactSideName(c, 1), pair.options().penalty};
     l.region_a = pair.regionName(0);
     l.region_b = pair.regionName(1);
+    l.collocation_role = pair.pressureField().role;
+    l.collocation_weight = pair.pressureField().weight;
+    l.role_factor = pair.pressureField().factor;
     if (const auto* o = dynamic_cast<const ObstacleContact*>(&pair)) {
       l.obstacle_shape = o->obstacle().shapeName();
       l.obstacle_point = o->obstacle().point();
@@ -126,6 +129,11 @@ std::vector<BodySample> bodySamples(const MultibodySystem& system, const Eigen::
   std::vector<BodySample> out;
   for (int b = 0; b < system.numBodies(); ++b) out.push_back(bodySample(system, b, y));
   return out;
+}
+
+PressureSample pressureSample(const MultibodySystem& system, int c) {
+  const ContactPressure& p = system.contact(c).pressureField();
+  return {p.position, p.pressure, p.normal};
 }
 
 OutputSample outputSample(MultibodySystem& system, double t, const Eigen::VectorXd& y) {

@@ -22,4 +22,8 @@ OutputSample outputSample(MultibodySystem& system, double t, const Eigen::Vector
 // The bodies' part of the sample at y (no contact or joint evaluation).
 std::vector<BodySample> bodySamples(const MultibodySystem& system, const Eigen::VectorXd& y);
 
+// Contact pair c's pressure field of its last right-hand side (SurfaceContact::pressureField;
+// no evaluation).
+PressureSample pressureSample(const MultibodySystem& system, int c);
+
 }  // namespace ffriga

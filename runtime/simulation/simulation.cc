@@ -119,6 +119,21 @@ bool contactAtStepEnd(const MultibodySystem& system, RunFigures& figures) {
   return contact;
 }
 
+// Each contact pair's pressure field at its own force peak: where the step's last right-hand
+// side (whose states the figures read) gave the pair a larger normal force than the one
+// recorded, the field of that same evaluation, which the pair kept in its serial sums
+// (SurfaceContact::pressureField). Chosen over evaluating the pair again at the peak: that
+// costs a closest-point search per point, moves the searches' warm starts and clearance
+// records (and so the following steps' bits), and would not be the evaluation whose force
+// the figures report. Ordinary steps pay one comparison per pair.
+void recordPressurePeaks(const MultibodySystem& system, double t, ResultWriter& writer) {
+  const std::vector<ContactState>& states = system.lastRhsContacts();
+  for (int c = 0; c < static_cast<int>(states.size()); ++c) {
+    if (states[c].normal_force > writer.pressurePeakForce(c))
+      writer.recordPressurePeak(c, t, states[c].normal_force, pressureSample(system, c));
+  }
+}
+
 // In a step (tPrev, t] that begins or ends in contact, also every multiple of the contact
 // output interval dtc (> 0) that is not a regular output already; `times` stays sorted.
 void addContactOutputs(double dtc, bool in_contact, double tPrev, double t,
@@ -242,6 +257,7 @@ void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::Vect
     if (writer_.wantsPeaks())
       writer_.recordPeak(t_, f.max_contact_force, bodySamples(system_, integ.currentState()));
   }
+  recordPressurePeaks(system_, t_, writer_);
   checkRepresentable(system_, t_);
   std::vector<double> times;  // the regular outputs inside this step
   while (nextOut_ <= nOut_ && outputTime(nextOut_) <= t_ * (1.0 + 1e-14))

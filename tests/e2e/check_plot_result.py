@@ -1,5 +1,6 @@
 """benchmarks/plot_result.py turns a real result file (the e2e.impact2d_h3 run's) into its
-five PNGs (force against Hertz, energies, penetration, active points, stress lines), each a
+six PNGs (force against Hertz, energies, penetration, active points, stress lines, contact
+pressure), each a
 picture that is not blank; a file that is not a result gets exit code 2.
 
 usage: check_plot_result.py SOURCE_DIR RESULT.h5 OUT_DIR
@@ -20,7 +21,7 @@ r = subprocess.run([sys.executable, script, result, "-o", out, "--zoom"], captur
                    text=True)
 check(r.returncode == 0, f"plot_result.py exited with {r.returncode} {r.stderr.strip()}")
 stem = os.path.splitext(os.path.basename(result))[0]
-for kind in ("force", "energy", "penetration", "active_points", "stress_lines"):
+for kind in ("force", "energy", "penetration", "active_points", "stress_lines", "pressure"):
     png = os.path.join(out, f"{stem}_{kind}.png")
     if not os.path.exists(png):
         check(False, f"{os.path.basename(png)} written")

@@ -13,9 +13,13 @@ its file (the state at the last row on disk) and appends to the same file.
      same output times, force peak and contact duration within 1e-3 relative (measured
      1e-5: the peak is the largest force over the steps, and the runs step differently after
      the restart; 1e-3 is 3 times below the 0.3 % the Sect. 5 acceptance asks).
+     The pair's pressure field at its force peak (/contacts/impact/peak_pressure) is that
+     of the restarted file's own force peak (time and force the root's) and within 1e-3 of
+     the reference's peak pressure at every point (as the force peak).
   3. A finished run continued with --end-time: rows appended after the old end, status
-     completed, end_time_s updated; a finished run without --end-time, a file that is not a
-     result and --restart with -o are refused with exit code 2.
+     completed, end_time_s updated, the pressure field at the force peak kept bit for bit
+     (no larger force after the contact); a finished run without --end-time, a file that is
+     not a result and --restart with -o are refused with exit code 2.
 
 usage: check_restart.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
 """
@@ -137,6 +141,12 @@ with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
     check(abs(peak) < 1e-3 and abs(db / da - 1.0) < 1e-3,
           f"impact: force peak {peak:+.2e}, contact duration {db / da - 1.0:+.2e} relative to the "
           f"uninterrupted run")
+    ga, gb = a["contacts/impact/peak_pressure"], b["contacts/impact/peak_pressure"]
+    dp = np.max(np.abs(ga["pressure"][()] - gb["pressure"][()])) / np.max(ga["pressure"][()])
+    check(gb.attrs["normal_force_N"] == b.attrs["max_contact_force_N"]
+          and gb.attrs["time_s"] == b.attrs["max_contact_force_time_s"] and dp < 1e-3,
+          f"impact: pressure field at the restarted run's own force peak, within {dp:.1e} of the "
+          f"reference's peak pressure")
     # Visualisation frames (issue 12): the frames after the record were dropped and written
     # again, the ones before kept bit for bit; the XDMF file names every frame.
     fa_t, fb_t = a["visualisation/time"][()], b["visualisation/time"][()]
@@ -149,8 +159,16 @@ with h5py.File(ref, "r") as a, h5py.File(part, "r") as b:
     check(n_frames == len(fb_t), f"impact: the XDMF file names {n_frames} frames")
 
 # 3. Continue a finished run; refusals.
+with h5py.File(ref, "r") as f:
+    g = f["contacts/impact/peak_pressure"]
+    field = {k: g[k][()] for k in g} | dict(g.attrs)
 r = restart(ref, "--end-time", "1.5e-4")
 with h5py.File(ref, "r") as f:
+    g = f["contacts/impact/peak_pressure"]
+    after = {k: g[k][()] for k in g} | dict(g.attrs)
+    check(field.keys() == after.keys()
+          and all(np.array_equal(field[k], after[k]) for k in field),
+          "finished run continued: the pressure field at the force peak kept bit for bit")
     t = f["time"][()]
     check(r.returncode == 0 and attr(f, "status") == "completed" and abs(t[-1] - 1.5e-4) < 1e-15
           and len(t) == 1501 and np.all(np.diff(t) > 0) and f.attrs["end_time_s"] == 1.5e-4,

@@ -9,7 +9,7 @@ to 6 ns, flushed every 0.5 s of wall time):
   * the README's way of looking at it, `benchmarks/plot_result.py RESULT.h5 --follow 1`,
     started with the run: it redraws while the run goes (at least three times with status
     `running`), stops by itself once the status is `completed`, exit code 0, and leaves
-    the five pictures;
+    the six pictures;
   * while it runs, a second ffrsim is refused (exit code 2, naming the process that writes
     the file): `--restart` of the running file and `-o` onto it (the writer lock: HDF5
     gives its own lock up in SWMR mode);
@@ -116,7 +116,7 @@ check(final_status == "completed" and len(final_t) == 1001,
 running = [l for l in follow_out.splitlines() if l.startswith("running:")]
 done = [l for l in follow_out.splitlines() if l.startswith("completed:")]
 pngs = [p for p in follow_out.splitlines() if p.endswith(".png") and os.path.exists(p)]
-check(follow.returncode == 0 and len(running) >= 3 and len(done) == 1 and len(pngs) == 5,
+check(follow.returncode == 0 and len(running) >= 3 and len(done) == 1 and len(pngs) == 6,
       f"plot_result.py --follow: exit {follow.returncode}, {len(running)} redraws while running, "
       f"then '{done[0] if done else follow_err.strip()}', {len(pngs)} pictures")
 check.exit()

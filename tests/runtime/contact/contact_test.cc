@@ -175,6 +175,62 @@ TEST_CASE("contact forces: equal and opposite, and the gradient of the penalty e
   }
 }
 
+TEST_CASE("contact pressure field: c_p max(0, -g_n) of both roles, its resultant the force",
+          "[contact]") {
+  const auto [a, b] = facingCaps();
+  FloatingBody3d A("A", a), B("B", b);
+  ContactOptions opt;
+  opt.penalty = 1e4;
+  ContactPair pair("A-B", 0, A, 0, 1, B, 0, opt);
+  Eigen::VectorXd spA(7 + 3), spB(7 + 3);
+  spA << 0.01, -0.02, 0.0, 1.0, 0.01, -0.02, 0.03, 0.01, -0.02, 0.015;
+  spB << -0.01, 0.02, 0.0, 1.0, -0.02, 0.01, 0.02, -0.01, 0.02, 0.01;
+  Eigen::VectorXd hA = Eigen::VectorXd::Zero(9), hB = Eigen::VectorXd::Zero(9);
+  ContactState st;
+  pair.evaluate(A, A.pose(spA.data()), B, B.pose(spB.data()), hA.data(), hB.data(), &st);
+  REQUIRE(st.active_points > 0);
+  const ContactPressure& field = pair.pressureField();
+  REQUIRE(field.numRoles() == 2);
+  CHECK(field.factor == 0.5);
+  const int nA = static_cast<int>(a->surfaces[0].collocation_weights.size());
+  CHECK(field.offset(1) == nA);
+  // Role r's force on its own body is sum p_i w_i n_i; the pair's on A is the half
+  // difference. Both are the sums evaluate() forms, in another order: round-off of ~100
+  // terms of size |F|, 1e-12 |F| is safe.
+  Eigen::Vector3d onA = Eigen::Vector3d::Zero();
+  int active = 0;
+  double deepest = 0.0;
+  for (Eigen::Index i = 0; i < field.pressure.size(); ++i) {
+    const double p = field.pressure(i);
+    REQUIRE(p >= 0.0);
+    if (p == 0.0) {
+      CHECK(field.normal.row(i).isZero(0.0));
+      continue;
+    }
+    ++active;
+    deepest = std::max(deepest, p / opt.penalty);
+    CHECK(std::abs(field.normal.row(i).norm() - 1.0) <= 1e-14);
+    const double sign = field.role[i] == 0 ? 1.0 : -1.0;
+    onA += sign * field.factor * p * field.weight(i) * field.normal.row(i).transpose();
+  }
+  CHECK(active == st.active_points);
+  CHECK(std::abs(deepest - st.max_penetration) <= 1e-15 * st.max_penetration);
+  CHECK((onA - st.force).norm() <= 1e-12 * st.force.norm());
+  // Positions: where the points are (A's points in A's frame are the undeformed collocation
+  // points plus Phi_i q, within the caps' size of the origin).
+  CHECK(field.position.cwiseAbs().maxCoeff() < 2.0);
+  // An evaluation without diagnostics leaves the field; one with the bodies apart clears it.
+  const ContactPressure kept = field;
+  pair.evaluate(A, A.pose(spA.data()), B, B.pose(spB.data()), hA.data(), hB.data(), nullptr);
+  CHECK(field.pressure == kept.pressure);
+  Eigen::VectorXd away = spB;
+  away(2) += 10.0;
+  REQUIRE(pair.boxGap(A, A.pose(spA.data()), B, B.pose(away.data())) > 1.0);
+  ContactState apart;  // evaluate() leaves it as given when apart (the system zeroes it)
+  pair.evaluate(A, A.pose(spA.data()), B, B.pose(away.data()), hA.data(), hB.data(), &apart);
+  CHECK(field.pressure.isZero(0.0));
+}
+
 TEST_CASE("3D contact in time: two tumbling flexible bodies collide, momenta are kept",
           "[contact]") {
   // Cap B (facing -z) falls onto cap A (facing +z) while both tumble; the contact forces
@@ -276,4 +332,77 @@ TEST_CASE("contact clearance bound: a pair with history gives the forces of a fu
   CHECK(contactStates < 190);  // they also separate
   // The bound pays: most points are not searched at most states.
   CHECK(kept.searchesAvoided() > kept.searches());
+}
+
+namespace {
+
+// A flat square face [x0, x0 + 1] x [0, 1] at height z, bilinear with one interior knot per
+// direction (Greville points: 4 per direction, the edges included), facing `outward` z.
+FlexibleBodySid flatFace(double x0, double z, double outward) {
+  std::vector<KnotVector> U = {KnotVector({0, 0, 0, 0.5, 1, 1, 1}, 2),
+                               KnotVector({0, 0, 0, 0.5, 1, 1, 1}, 2)};
+  const int n = U[0].numBasis();
+  Eigen::MatrixXd P(n * n, 3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) P.row(i + n * j) << x0 + i / (n - 1.0), j / (n - 1.0), z;
+  const NurbsPatch patch(U, P, Eigen::VectorXd::Ones(n * n));
+  // Point masses at the control points and one as heavy as them all behind the face's
+  // middle (the body's inside: the pair checks that normals point away from its centre).
+  const int N = n * n;
+  Eigen::MatrixXd X(N + 1, 3);
+  X.topRows(N) = P;
+  X.row(N) << x0 + 0.5, 0.5, z - 0.5 * outward;
+  Eigen::VectorXd m = Eigen::VectorXd::Ones(N + 1);
+  m(N) = N;
+  FlexibleBodySid sid;
+  test::pointMassInvariants(sid, m, X, 0.05 * Eigen::MatrixXd::Random(3 * (N + 1), 2),
+                            Eigen::MatrixXd::Identity(3 * (N + 1), 3 * (N + 1)));
+  sid.weights = Eigen::VectorXd::Ones(N + 1);
+  ContactSurface cs = test::bezierExtract(patch, outward);
+  test::addGrevilleCollocation(patch, cs, 1e-2);
+  sid.surfaces.push_back(cs);
+  return sid;
+}
+
+}  // namespace
+
+TEST_CASE("flat faces end-on: edge points just beside the other face are held by its plane",
+          "[contact]") {
+  // A faces +z at z = 0; B faces -z at z = -delta (overlap delta), shifted by eps along x, so
+  // that A's edge points at x = 0 lie eps beside B's edge x = eps (the lateral mismatch of
+  // two equal end faces strained slightly differently).
+  const double delta = 1e-6, eps = 2e-4;
+  auto a = std::make_shared<FlexibleBodySid>(flatFace(0.0, 0.0, 1.0));
+  auto b = std::make_shared<FlexibleBodySid>(flatFace(eps, -delta, -1.0));
+  FloatingBody3d A("A", a), B("B", b);
+  Eigen::VectorXd s(7 + 2);
+  s << 0, 0, 0, 1, 0, 0, 0, 0, 0;  // at the origin, undeformed
+  const int nA = static_cast<int>(a->surfaces[0].collocation_weights.size());
+  const int edge = 4;  // A's points with x = 0 (Greville 0 of the 4 in x, each row in y)
+  for (const double reach : {0.0, 1e-3}) {
+    ContactOptions opt;
+    opt.penalty = 1e10;
+    opt.both_roles = false;  // A's points against B
+    opt.edge_reach = reach;
+    ContactPair pair("A-B", 0, A, 0, 1, B, 0, opt);
+    Eigen::VectorXd hA = Eigen::VectorXd::Zero(8), hB = Eigen::VectorXd::Zero(8);
+    ContactState st;
+    pair.evaluate(A, A.pose(s.data()), B, B.pose(s.data()), hA.data(), hB.data(), &st);
+    if (reach == 0.0) {
+      // Only proper foot points: the edge row gets no force and is reported beyond the edge
+      // at the overlap's depth (behind both tangent planes).
+      CHECK(st.active_points == nA - edge);
+      CHECK(std::abs(st.beyond_edge_penetration - delta) <= 1e-12 * delta);
+    } else {
+      // Held by B's plane: every point at the overlap, the force c_p delta sum w on A, along
+      // -z (away from B, into A's inside).
+      CHECK(st.active_points == nA);
+      CHECK(st.beyond_edge_penetration == 0.0);
+      // Depths are differences of unit coordinates: round-off 1e-16 against delta = 1e-6.
+      CHECK(std::abs(st.max_penetration - delta) <= 1e-9 * delta);
+      const double expected = opt.penalty * delta * a->surfaces[0].collocation_weights.sum();
+      CHECK(std::abs(st.force.z() + expected) <= 1e-9 * expected);
+      CHECK(std::abs(st.force.x()) + std::abs(st.force.y()) <= 1e-12 * expected);
+    }
+  }
 }

@@ -427,6 +427,36 @@ TEST_CASE("obstacle contact: penalty forces of a flexible body on a plane, Eq. (
     CHECK(hd == h[0]);
     CHECK(sd.force == s.force);
     CHECK(sd.energy == s.energy);
+
+    // The pressure field of that evaluation (runtime/contact/contact_pressure.h): one role,
+    // every collocation point at its world position with c_p max(0, -g) by the hand gap
+    // (the two routes to a point agree to ~2e-16 m, kAbsForce: 2e-12 Pa at c_p = 1e4 N/m^3;
+    // bound 1e-10 Pa), and sum p_i w_i n_i the resultant (kAbsForce).
+    const ContactPressure& field = pair.pressureField();
+    REQUIRE(field.numRoles() == 1);
+    REQUIRE(field.pressure.size() == static_cast<Eigen::Index>(points.size()));
+    CHECK(field.factor == 1.0);
+    Eigen::Vector3d resultant = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const double gap = planeGap(p, normal, 0.0)(points[i].world).gap;
+      const double expected = kPenalty * std::max(0.0, -gap);
+      CHECK(std::abs(field.pressure(i) - expected) <= 1e-10);
+      CHECK((field.position.row(i).transpose() - points[i].world).norm() <= 1e-14);
+      CHECK(field.weight(i) == points[i].weight);
+      resultant += field.pressure(i) * field.weight(i) * field.normal.row(i).transpose();
+    }
+    CHECK((resultant - s.force).norm() <= kAbsForce);
+    // An evaluation without diagnostics (a Jacobian's, a projection's) leaves it; one with
+    // the body lifted clear of the plane (apart, no work) clears it.
+    const ContactPressure kept = field;
+    pair.evaluate(scene.sys.body(0), scene.sys.body(0).pose(sp.data()), hd.data(), nullptr);
+    CHECK(field.pressure == kept.pressure);
+    Eigen::VectorXd lifted = sp;
+    lifted.head<3>() += 10.0 * n;
+    ContactState apart;  // evaluate() leaves it as given when apart (the system zeroes it)
+    pair.evaluate(scene.sys.body(0), scene.sys.body(0).pose(lifted.data()), hd.data(), &apart);
+    CHECK(apart.active_points == 0);
+    CHECK(field.pressure.isZero(0.0));
   }
 
   SECTION("finite plate: only the points whose foot lies on it") {

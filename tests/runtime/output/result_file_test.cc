@@ -180,3 +180,80 @@ TEST_CASE("result file: a file size limit stops the rows between two flushes", "
   CHECK(rows < flushed + 300);
   std::remove(path.c_str());
 }
+
+namespace {
+
+// Two contact pairs as the outputs see them: "ab" with both roles (3 + 2 points, factor 1/2)
+// and "floor" with one role (2 points); no bodies.
+OutputLayout twoPairs() {
+  OutputLayout layout;
+  layout.state_size = 1;
+  ConnectionLayout ab("ab", "contact", "a", "b", 1e17);
+  ConnectionLayout floor("floor", "contact", "a", "plane", 1e17);
+  ab.collocation_role = {0, 0, 0, 1, 1};
+  ab.collocation_weight = Eigen::VectorXd::LinSpaced(5, 1e-9, 5e-9);
+  ab.role_factor = 0.5;
+  floor.collocation_role = {0, 0};
+  floor.collocation_weight = Eigen::VectorXd::Constant(2, 2e-9);
+  layout.contacts = {ab, floor};
+  return layout;
+}
+
+PressureSample pressureSample(int n, double scale) {
+  PressureSample s;
+  s.position = scale * Eigen::MatrixXd::Random(n, 3);
+  s.pressure = scale * Eigen::VectorXd::LinSpaced(n, 0.0, 2e9);
+  s.normal = Eigen::MatrixXd::Zero(n, 3);
+  s.normal.col(1).setOnes();
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("result file: each pair's pressure field at its force peak, in place, over a restart",
+          "[result]") {
+  const std::string path = "result_peak_pressure_test.h5";
+  const OutputLayout layout = twoPairs();
+  const PressureSample first = pressureSample(5, 1.0), larger = pressureSample(5, 2.0);
+  {
+    ResultWriter w(path, layout, "unit test", "", FlushConfig{});
+    w.startSwmr();  // the groups exist before: written in place from now on
+    CHECK(w.pressurePeakForce(0) == 0.0);
+    w.recordPressurePeak(0, 1e-5, 100.0, first);
+    w.flush();
+    w.recordPressurePeak(0, 2e-5, 150.0, larger);
+    CHECK(w.pressurePeakForce(0) == 150.0);
+    CHECK(w.pressurePeakForce(1) == 0.0);
+    w.close();
+  }
+  auto check = [&](const PressureSample& expected, double time, double force) {
+    h5::Handle f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    REQUIRE(f.id() >= 0);
+    const h5::Context c{path};
+    h5::Handle g = h5::openGroup(c, f.id(), "contacts/ab/peak_pressure");
+    CHECK(h5::readDoubleAttribute(c, g.id(), "time_s") == time);
+    CHECK(h5::readDoubleAttribute(c, g.id(), "normal_force_N") == force);
+    CHECK(h5::readDoubleAttribute(c, g.id(), "role_factor") == 0.5);
+    CHECK(readDataset(g.id(), "position") == expected.position);
+    CHECK(readDataset(g.id(), "pressure") == expected.pressure);
+    CHECK(readDataset(g.id(), "normal") == expected.normal);
+    CHECK(readDataset(g.id(), "weight") == layout.contacts[0].collocation_weight);
+    CHECK(h5::readInts(c, g.id(), "role") == layout.contacts[0].collocation_role);
+    h5::Handle p(H5Dopen2(g.id(), "pressure", H5P_DEFAULT), H5Dclose);
+    CHECK(h5::readStringAttribute(c, p.id(), "unit") == "Pa");
+    // The pair that never touched has no group.
+    CHECK_FALSE(h5::exists(f.id(), "contacts/floor/peak_pressure"));
+  };
+  check(larger, 2e-5, 150.0);
+  // A restart keeps the recorded peak: a smaller force is no peak, a larger one replaces it.
+  RestartRecord resume;
+  resume.state = Eigen::VectorXd::Zero(1);
+  {
+    ResultWriter w(path, layout, "unit test", "", FlushConfig{}, &resume);
+    w.startSwmr();
+    CHECK(w.pressurePeakForce(0) == 150.0);
+    w.close();
+  }
+  check(larger, 2e-5, 150.0);
+  std::remove(path.c_str());
+}
