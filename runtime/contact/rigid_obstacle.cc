@@ -21,8 +21,22 @@ RigidObstacle RigidObstacle::sphere(std::string name, const Eigen::Vector3d& cen
   return RigidObstacle(std::move(name), Shape::kSphere, centre, Eigen::Vector3d::UnitY(), radius);
 }
 
+RigidObstacle RigidObstacle::cylinder(std::string name, const Eigen::Vector3d& point,
+                                      const Eigen::Vector3d& axis, double radius) {
+  const double length = axis.norm();
+  FFRIGA_CHECK(length > 0.0 && std::isfinite(length),
+               "obstacle '" << name << "': cylinder axis (" << axis.transpose() << ")");
+  FFRIGA_CHECK(radius > 0.0, "obstacle '" << name << "': cylinder radius " << radius);
+  return RigidObstacle(std::move(name), Shape::kCylinder, point, axis / length, radius);
+}
+
 const char* RigidObstacle::shapeName() const {
-  return shape_ == Shape::kPlane ? "plane" : "sphere";
+  switch (shape_) {
+    case Shape::kPlane: return "plane";
+    case Shape::kSphere: return "sphere";
+    case Shape::kCylinder: return "cylinder";
+  }
+  return "";
 }
 
 ObstaclePoint RigidObstacle::nearest(const Eigen::Vector3d& x) const {
@@ -33,11 +47,24 @@ ObstaclePoint RigidObstacle::nearest(const Eigen::Vector3d& x) const {
     if (radius_ > 0.0) p.covered = (x - p.gap * normal_ - point_).norm() <= radius_;
     return p;
   }
-  const Eigen::Vector3d r = x - point_;
+  Eigen::Vector3d r = x - point_;
+  double scale = 0.0;  // m: the size of round-off in r
+  if (shape_ == Shape::kCylinder) {  // off the axis
+    const double along = normal_.dot(r);
+    scale = 1e-14 * (std::abs(along) + radius_);
+    r -= along * normal_;
+  }
   const double d = r.norm();
   p.gap = d - radius_;
-  // At the centre every direction is nearest: any unit normal (the point is radius_ deep).
-  p.normal = d > 0.0 ? Eigen::Vector3d(r / d) : Eigen::Vector3d::UnitY();
+  // At the centre (on the axis, within round-off) every direction is nearest: any unit
+  // normal (the point is radius_ deep), perpendicular to a cylinder's axis.
+  if (d > scale) {
+    p.normal = r / d;
+  } else if (shape_ == Shape::kCylinder) {
+    p.normal = normal_.unitOrthogonal();
+  } else {
+    p.normal = Eigen::Vector3d::UnitY();
+  }
   return p;
 }
 
@@ -45,6 +72,8 @@ double RigidObstacle::boxGap(const Eigen::Vector3d& lo, const Eigen::Vector3d& h
   const Eigen::Vector3d centre = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
   if (shape_ == Shape::kPlane)  // the box's lowest corner along n
     return normal_.dot(centre - point_) - normal_.cwiseAbs().dot(half);
+  if (shape_ == Shape::kCylinder)  // g is 1-Lipschitz: at the box centre less half its diagonal
+    return nearest(centre).gap - half.norm();
   // The distance from c to the box, minus R.
   const Eigen::Vector3d outside = ((point_ - centre).cwiseAbs() - half).cwiseMax(0.0);
   return outside.norm() - radius_;
@@ -53,6 +82,7 @@ double RigidObstacle::boxGap(const Eigen::Vector3d& lo, const Eigen::Vector3d& h
 bool RigidObstacle::axisymmetric() const {
   const bool onAxis = point_(0) == 0.0 && point_(2) == 0.0;
   if (shape_ == Shape::kSphere) return onAxis;
+  if (shape_ == Shape::kCylinder) return onAxis && normal_(0) == 0.0 && normal_(2) == 0.0;
   // A plane normal to the axis is {y = p_y}; a finite one is a disk about the axis.
   return normal_(0) == 0.0 && normal_(2) == 0.0 && (radius_ <= 0.0 || onAxis);
 }

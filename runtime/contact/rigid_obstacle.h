@@ -5,9 +5,13 @@
 //     infinite, or finite: a disk of radius R about p (a point whose foot lies beyond R is
 //     beside the plate and gets no force: the plate has no thickness and no edge force);
 //   * sphere: centre c and radius R, outside the sphere:
-//       g(x) = |x - c| - R,  n = (x - c) / |x - c|.
+//       g(x) = |x - c| - R,  n = (x - c) / |x - c|;
+//   * cylinder: infinite, circular, about the axis through p along the unit d, radius R,
+//     outside it (a post, a roller, a shaft):
+//       r = (x - p) - (d . (x - p)) d,  g(x) = |r| - R,  n = r / |r|.
 // Axisymmetric scenes (points (r, y) of the meridian plane): a plane must be normal to the
-// axis (n = (0, +-1, 0)) and a sphere centred on it; the scene checks it.
+// axis (n = (0, +-1, 0)), a sphere centred on it and a cylinder coaxial with it; the scene
+// checks it.
 // g < 0 is a penetration; the penalty force on a body's collocation point is
 // f = -c_p g w n (Eq. 17), with n the obstacle's normal at the foot point.
 #pragma once
@@ -27,7 +31,7 @@ struct ObstaclePoint {
 
 class RigidObstacle {
  public:
-  enum class Shape { kPlane, kSphere };
+  enum class Shape { kPlane, kSphere, kCylinder };
 
   // A plane through `point` with outward `normal` (normalised here; zero is an error),
   // infinite for radius <= 0, else a disk of that radius (m) about `point`.
@@ -35,13 +39,18 @@ class RigidObstacle {
                              const Eigen::Vector3d& normal, double radius);
   // A sphere of `radius` (m, > 0) about `centre`.
   static RigidObstacle sphere(std::string name, const Eigen::Vector3d& centre, double radius);
+  // An infinite cylinder of `radius` (m, > 0) about the axis through `point` along `axis`
+  // (normalised here; zero is an error).
+  static RigidObstacle cylinder(std::string name, const Eigen::Vector3d& point,
+                                const Eigen::Vector3d& axis, double radius);
 
   const std::string& name() const { return name_; }
   Shape shape() const { return shape_; }
-  const Eigen::Vector3d& point() const { return point_; }    // plane: p; sphere: c (m)
-  const Eigen::Vector3d& normal() const { return normal_; }  // plane: n
+  // plane: p; sphere: c; cylinder: a point of its axis (m)
+  const Eigen::Vector3d& point() const { return point_; }
+  const Eigen::Vector3d& normal() const { return normal_; }  // plane: n; cylinder: d
   double radius() const { return radius_; }                  // plane: <= 0 infinite (m)
-  // "plane", "sphere": the result file's word for the shape.
+  // "plane", "sphere", "cylinder": the result file's word for the shape.
   const char* shapeName() const;
 
   // The nearest surface point of x (world, m).

@@ -72,6 +72,8 @@ void ResultRows::createContacts(const OutputLayout& layout) {
       h5::writeVector(c, g.id(), "obstacle_point", pair.obstacle_point, "m");
       if (pair.obstacle_shape == "plane")
         h5::writeVector(c, g.id(), "obstacle_normal", pair.obstacle_normal, "1");
+      if (pair.obstacle_shape == "cylinder")
+        h5::writeVector(c, g.id(), "obstacle_axis", pair.obstacle_normal, "1");
     }
     ContactSeries s;
     s.normal_force = &file_.series(g.id(), "normal_force", 0, "N",

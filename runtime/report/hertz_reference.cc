@@ -31,8 +31,10 @@ HertzSphere rigidPartner(const RigidObstacle& o) {
 
 // A sphere body against an obstacle: the approach speed along the normal at the nearest
 // point when the sphere's surface first touches, under gravity alone (v_n^2 + 2 g_n d with
-// d the initial clearance; a body that never gets there has none).
+// d the initial clearance; a body that never gets there has none). A cylinder has none:
+// a sphere on it makes an elliptical contact, which the spheres' Hertz solution is not.
 std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
+  if (c.obstacle().shape() == RigidObstacle::Shape::kCylinder) return std::nullopt;
   const auto sa = sphereOf(scene.system->body(c.bodyA()).sid());
   if (!sa) return std::nullopt;
   const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];

@@ -26,6 +26,24 @@ RigidObstacle readSphere(const YamlDocument& doc, const YAML::Node& S, const std
   return RigidObstacle::sphere(name, centre, getDouble(doc, S["radius"], k + ".radius"));
 }
 
+RigidObstacle readCylinder(const YamlDocument& doc, const YAML::Node& C, const std::string& name,
+                           const std::string& k) {
+  const Eigen::Vector3d point = vector3(doc, C["point"], k + ".point");
+  const Eigen::Vector3d axis = vector3(doc, C["axis"], k + ".axis");
+  const double length = axis.norm();
+  if (!(length > 0.0) || !std::isfinite(length))
+    throw inputError(doc, C["axis"], k + ".axis",
+                     Str() << "expected a nonzero direction, found (" << axis.transpose() << ")");
+  return RigidObstacle::cylinder(name, point, axis, getDouble(doc, C["radius"], k + ".radius"));
+}
+
+// The key of obstacle O's shape ("plane", "sphere" or "cylinder"; the schema requires one).
+std::string shapeKey(const YAML::Node& O) {
+  for (const char* key : {"plane", "sphere", "cylinder"})
+    if (O[key]) return key;
+  return "sphere";
+}
+
 }  // namespace
 
 std::map<std::string, RigidObstacle> readObstacles(const YamlDocument& doc, bool axisymmetric) {
@@ -35,16 +53,21 @@ std::map<std::string, RigidObstacle> readObstacles(const YamlDocument& doc, bool
     const YAML::Node O = obstacles[o];
     const std::string k = Str() << "obstacles[" << o << "]";
     const std::string name = getString(doc, O["name"], k + ".name");
-    const bool plane = bool(O["plane"]);
-    const std::string ks = k + (plane ? ".plane" : ".sphere");
-    RigidObstacle obstacle = plane ? readPlane(doc, O["plane"], name, ks)
-                                   : readSphere(doc, O["sphere"], name, ks);
+    const std::string shape = shapeKey(O);
+    const std::string ks = k + "." + shape;
+    RigidObstacle obstacle = shape == "plane"    ? readPlane(doc, O[shape], name, ks)
+                             : shape == "sphere" ? readSphere(doc, O[shape], name, ks)
+                                                 : readCylinder(doc, O[shape], name, ks);
     if (axisymmetric && !obstacle.axisymmetric())
-      throw inputError(doc, plane ? O["plane"] : O["sphere"], ks,
-                       plane ? "an axisymmetric scene needs a plane normal to its axis (normal "
-                               "(0, +-1, 0)), finite ones centred on it (point (0, y, 0))"
-                             : "an axisymmetric scene needs a sphere centred on its axis "
-                               "(centre (0, y, 0))");
+      throw inputError(doc, O[shape], ks,
+                       shape == "plane"
+                           ? "an axisymmetric scene needs a plane normal to its axis (normal "
+                             "(0, +-1, 0)), finite ones centred on it (point (0, y, 0))"
+                       : shape == "sphere"
+                           ? "an axisymmetric scene needs a sphere centred on its axis (centre "
+                             "(0, y, 0))"
+                           : "an axisymmetric scene needs a cylinder about its axis (point "
+                             "(0, y, 0), axis (0, +-1, 0))");
     out.emplace(name, std::move(obstacle));
   }
   return out;

@@ -310,6 +310,35 @@ TEST_CASE("obstacle contact: a sphere's gap and normal, hand values", "[contact]
   CHECK_THROWS(RigidObstacle::sphere("x", c, -1.0));
 }
 
+TEST_CASE("obstacle contact: a cylinder's gap and normal, hand values", "[contact]") {
+  // The axis through p along (1, 2, 2) / 3 (given unnormalised), radius 0.5.
+  const Eigen::Vector3d p(1, -2, 0.5), d = Eigen::Vector3d(1, 2, 2) / 3.0;
+  const RigidObstacle post = RigidObstacle::cylinder("post", p, 3.0 * d, 0.5);
+  CHECK(std::string(post.shapeName()) == "cylinder");
+  CHECK((post.normal() - d).norm() <= 1e-16);
+  // (2, 2, -3) / sqrt(17) is perpendicular to d: a point 3 off the axis (and anywhere along
+  // it) has gap 2.5 and that normal; one 0.2 off it gap -0.3 (round-off: a few ulp of
+  // coordinates ~5, 1e-14).
+  const Eigen::Vector3d u = Eigen::Vector3d(2, 2, -3) / std::sqrt(17.0);
+  REQUIRE(std::abs(u.dot(d)) <= 1e-16);
+  for (const double along : {0.0, -4.0, 7.5}) {
+    const ObstaclePoint out = post.nearest(p + along * d + 3.0 * u);
+    CHECK(std::abs(out.gap - 2.5) <= 1e-14);
+    CHECK((out.normal - u).norm() <= 1e-14);
+    CHECK(out.covered);
+    const ObstaclePoint in = post.nearest(p + along * d - 0.2 * u);
+    CHECK(std::abs(in.gap + 0.3) <= 1e-14);
+    CHECK((in.normal + u).norm() <= 1e-14);
+  }
+  // On the axis: radius deep, a unit normal perpendicular to the axis.
+  const ObstaclePoint axis = post.nearest(p + 2.0 * d);
+  CHECK(std::abs(axis.gap + 0.5) <= 1e-15);
+  CHECK(std::abs(axis.normal.norm() - 1.0) <= 1e-15);
+  CHECK(std::abs(axis.normal.dot(d)) <= 1e-15);
+  CHECK_THROWS(RigidObstacle::cylinder("x", p, d, 0.0));
+  CHECK_THROWS(RigidObstacle::cylinder("x", p, Eigen::Vector3d::Zero(), 1.0));
+}
+
 TEST_CASE("obstacle contact: boxGap is a lower bound of the gap over the box, tight", "[contact]") {
   Draw draw(101);
   for (int trial = 0; trial < 200; ++trial) {
@@ -319,7 +348,10 @@ TEST_CASE("obstacle contact: boxGap is a lower bound of the gap over the box, ti
     const RigidObstacle plane =
         RigidObstacle::plane("p", draw.vector(-1, 1), normal, trial % 3 == 0 ? 0.7 : 0.0);
     const RigidObstacle sphere = RigidObstacle::sphere("s", draw.vector(-3, 3), draw(0.05, 1.5));
+    const RigidObstacle cylinder =
+        RigidObstacle::cylinder("c", draw.vector(-3, 3), draw.vector(-1, 1), draw(0.05, 1.5));
     const double planeBound = plane.boxGap(lo, hi), sphereBound = sphere.boxGap(lo, hi);
+    const double cylinderBound = cylinder.boxGap(lo, hi);
     INFO("trial " << trial << ", box " << lo.transpose() << " .. " << hi.transpose());
     // A bound: no point of the box has a smaller gap. Round-off: a few ulp of the gaps
     // (coordinates ~5), 1e-14.
@@ -328,7 +360,12 @@ TEST_CASE("obstacle contact: boxGap is a lower bound of the gap over the box, ti
       for (int c = 0; c < 3; ++c) x(c) = draw(lo(c), hi(c));
       CHECK(planeBound <= plane.nearest(x).gap + 1e-14);
       CHECK(sphereBound <= sphere.nearest(x).gap + 1e-14);
+      CHECK(cylinderBound <= cylinder.nearest(x).gap + 1e-14);
     }
+    // The cylinder's bound (the centre's gap less half the diagonal) is off by at most the
+    // diagonal: the gap is 1-Lipschitz.
+    const Eigen::Vector3d mid = 0.5 * (lo + hi);
+    CHECK(cylinder.nearest(mid).gap - cylinderBound <= (hi - lo).norm() + 1e-14);
     // Tight: the plane's bound is the gap of the box's corner lowest along n, the sphere's
     // that of the box's point nearest the centre (the centre clamped to the box; inside
     // the box: the centre itself, gap -R).
@@ -361,6 +398,10 @@ TEST_CASE("obstacle contact: which obstacles an axisymmetric scene allows", "[co
   CHECK(RigidObstacle::sphere("s", Eigen::Vector3d(0, 5, 0), 1.0).axisymmetric());
   CHECK_FALSE(RigidObstacle::sphere("s", Eigen::Vector3d(0, 5, 0.1), 1.0).axisymmetric());
   CHECK_FALSE(RigidObstacle::sphere("s", Eigen::Vector3d(1e-6, 5, 0), 1.0).axisymmetric());
+  // Cylinders: coaxial only.
+  CHECK(RigidObstacle::cylinder("c", Eigen::Vector3d(0, 5, 0), down, 1.0).axisymmetric());
+  CHECK_FALSE(RigidObstacle::cylinder("c", Eigen::Vector3d(0, 5, 0), tilted, 1.0).axisymmetric());
+  CHECK_FALSE(RigidObstacle::cylinder("c", Eigen::Vector3d(0.1, 5, 0), up, 1.0).axisymmetric());
 }
 
 TEST_CASE("obstacle contact: penalty forces of a flexible body on a plane, Eq. (17)-(18)",
