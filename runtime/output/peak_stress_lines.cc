@@ -46,6 +46,7 @@ PeakStressLines::PeakStressLines(ResultFile& file, const OutputLayout& layout,
                                  std::vector<std::optional<HertzPartner>> partners)
     : file_(file) {
   for (int b = 0; b < static_cast<int>(layout.bodies.size()); ++b) {
+    if (layout.bodies[b].nq == 0) continue;  // rigid or frozen: no stresses
     const FlexibleBodySid& sid = *layout.bodies[b].sid;
     for (const StressLine& sl : sid.stress_lines) {
       Line line;

@@ -10,13 +10,16 @@ namespace ffriga {
 
 namespace {
 
-// A sphere's Hertz data from its SID (material and exact geometry, SID format 3).
-std::optional<HertzSphere> sphereOf(const FlexibleBodySid& sid) {
+// A sphere's Hertz data from its SID (material and exact geometry, SID format 3). A frozen
+// body (a SID body without elastic coordinates: a rigid NURBS target) is infinitely stiff.
+std::optional<HertzSphere> sphereOf(const BodyModel& body) {
+  const FlexibleBodySid& sid = body.sid();
   const std::string& type = sid.geometry.type;
   if (type != "half_disk" && type != "sphere") return std::nullopt;
   HertzSphere s;
   s.radius = sid.geometry.radius;
-  s.youngs_modulus = sid.material.youngs_modulus;
+  s.youngs_modulus = body.nq() > 0 ? sid.material.youngs_modulus
+                                   : std::numeric_limits<double>::infinity();
   s.poisson_ratio = sid.material.poisson_ratio;
   s.mass = sid.mass;
   return s;
@@ -35,7 +38,7 @@ HertzSphere rigidPartner(const RigidObstacle& o) {
 // a sphere on it makes an elliptical contact, which the spheres' Hertz solution is not.
 std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
   if (c.obstacle().shape() == RigidObstacle::Shape::kCylinder) return std::nullopt;
-  const auto sa = sphereOf(scene.system->body(c.bodyA()).sid());
+  const auto sa = sphereOf(scene.system->body(c.bodyA()));
   if (!sa) return std::nullopt;
   const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];
   const Eigen::Vector3d& v = scene.initial_velocity[c.bodyA()];
@@ -60,8 +63,8 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   if (const auto* o = dynamic_cast<const ObstacleContact*>(&c)) return obstacleReference(scene, *o);
   const BodyModel& a = scene.system->body(c.bodyA());
   const BodyModel& b = scene.system->body(c.bodyB());
-  const auto sa = sphereOf(a.sid());
-  const auto sb = sphereOf(b.sid());
+  const auto sa = sphereOf(a);
+  const auto sb = sphereOf(b);
   if (!sa || !sb) return std::nullopt;
   const Eigen::Vector3d& ra = scene.initial_position[c.bodyA()];
   const Eigen::Vector3d& rb = scene.initial_position[c.bodyB()];

@@ -1,7 +1,12 @@
-"""Acceptance check of a rigid cylinder as a contact target (issue 27): the coarse 3D steel
-sphere (sphere3d_coarse, from e2e.impact3d_coarse's folder) thrown at 0.1 m/s onto a rigid
-cylinder of radius 2 cm across its path (configs/scenes/ball_on_cylinder.yaml), against
-Hertz's elliptical contact of a sphere on a rigid cylinder, computed here.
+"""Acceptance check of rigid contact targets (issue 27), with the coarse 3D steel sphere
+(sphere3d_coarse, from e2e.impact3d_coarse's folder):
+  1. thrown at 0.1 m/s onto a rigid cylinder of radius 2 cm across its path
+     (configs/scenes/ball_on_cylinder.yaml), against Hertz's elliptical contact of a sphere
+     on a rigid cylinder, computed here;
+  2. the Sect. 6 head-on impact (configs/scenes/impact3d_coarse.yaml) with the upper sphere
+     frozen (a rigid body with its exact NURBS surface from the SID), against ffrsim's own
+     Hertz figures, which take a frozen sphere as rigid (E = infinity): force and duration
+     within 2 % (the coarse model's +1.05 % on a plane), no stress lines for the frozen body.
 
 Hertz, elliptical (Johnson, Contact Mechanics, Sect. 4.2; Love's displacements of the
 pressure p0 (1 - x^2/a^2 - y^2/b^2)^(1/2) on a half-space, b <= a, e^2 = 1 - b^2/a^2):
@@ -21,7 +26,7 @@ Bounds: force peak and duration within 2 % of this reference (the coarse 3D sphe
 0.09 mm, configs/bodies/sphere3d_coarse.yaml); the rebound speed within 1 % of the approach
 speed (no damping: quasi-static high modes); the pair let go at the end.
 
-  check_ball_on_cylinder.py FFRSIM SOURCE_DIR SID_DIR OUT_DIR
+  check_rigid_targets.py FFRSIM SOURCE_DIR SID_DIR OUT_DIR
 """
 import os
 import sys
@@ -111,4 +116,31 @@ with h5py.File(result, "r") as f:
     check(abs(-vz / V - 1) <= 1e-2, f"rebound {-vz:.5f} m/s, {-vz / V:.5f} of the approach "
           "(bound: within 1 %)")
     check(F[-1] == 0.0 and int(f.attrs["contact_events"]) == 1, "one contact, ended at the end")
+
+# 2. A frozen NURBS sphere as the target.
+scene = open(os.path.join(source, "configs", "scenes", "impact3d_coarse.yaml")).read()
+upper = scene.index("  - name: upper")
+frozen = scene[:upper] + scene[upper:].replace("    sid: sphere3d_coarse.sid.h5\n",
+                                                 "    sid: sphere3d_coarse.sid.h5\n    frozen: true\n", 1)
+assert frozen != scene
+path = os.path.join(out, "impact3d_frozen.yaml")
+open(path, "w").write(frozen)
+result = os.path.join(out, "impact3d_frozen.h5")
+check.run([ffrsim, "-q", path, "--sid-path", sids, "-o", result])
+with h5py.File(result, "r") as f:
+    check.status_completed(f)
+    a = f.attrs
+    # Hertz with the frozen sphere rigid: E* twice the two flexible spheres', so the force
+    # peak (2^(2/5) = 1.32 times) and duration (2^(-2/5)) of the two-flexible impact move.
+    fh, th = float(a["hertz_max_force_N"]), float(a["hertz_duration_s"])
+    check(abs(fh / 146.013 / 2 ** 0.4 - 1) <= 1e-3,
+          f"Hertz with a rigid partner: {fh:.3f} N = 2^(2/5) x 146.013 N (the flexible pair's)")
+    d = float(a["max_contact_force_N"]) / fh - 1
+    check(abs(d) <= 2e-2, f"frozen target: force peak {float(a['max_contact_force_N']):.3f} N "
+          f"({d:+.2%} of Hertz, bound 2 %)")
+    d = float(a["contact_duration_s"]) / th - 1
+    check(abs(d) <= 2e-2, f"frozen target: contact {1e6 * float(a['contact_duration_s']):.2f} us "
+          f"({d:+.2%} of Hertz, bound 2 %)")
+    lines = list(f["stress_lines"].keys()) if "stress_lines" in f else []
+    check(lines == ["lower"], f"stress lines only for the flexible sphere: {lines}")
 check.exit()
