@@ -297,7 +297,8 @@ void BodyPreprocessor::extractSurfaces() {
     }
     try {
       sid_.surfaces.push_back(
-          extractContactSurface(*space_, c.direction, c.upper ? 1 : 0, box, c.name));
+          extractContactSurface(*space_, c.direction, c.upper ? 1 : 0, box, c.name,
+                                c.gauss ? CollocationRule::kGauss : CollocationRule::kBotella));
     } catch (const std::invalid_argument& e) {
       throw InputError(Str() << config_.source.path << ": contact surface '" << c.name
                              << "' (key '" << c.key << "'): " << e.what());

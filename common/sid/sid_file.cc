@@ -87,6 +87,9 @@ void writeSurface(const Context& c, hid_t parent, const ContactSurface& s) {
                      s.collocation_points.rows() == 0
                          ? std::string("collocation points not computed: they come with the "
                                        "hierarchical contact surface (Botella points, issue 3)")
+                     : s.collocation_rule == CollocationRule::kGauss
+                         ? std::string("Gauss-Legendre points, p + 1 per direction and element, "
+                                       "weights: quadrature weight x surface Jacobian")
                          : std::string("Botella points"));
   h5::writeInts(c, g, "degrees", s.degrees);
   h5::writeMatrix(c, g, "element_lower", s.element_lower, "1");

@@ -320,10 +320,47 @@ void botellaPoints(const std::map<int, int>& colloc, ContactSurface& cs) {
   }
 }
 
+// Gauss collocation (header comment): p_a + 1 Gauss-Legendre points per direction of every
+// element, weights = quadrature weight x surface Jacobian, element by element.
+void gaussCollocation(const HierarchicalSpace& space, const ExtractedSurface& surf,
+                      ContactSurface& cs) {
+  const int dc = cs.dim;
+  const int ne = static_cast<int>(cs.element_level.size());
+  int per = 1;
+  for (int a = 0; a < dc; ++a) per *= cs.degrees[a] + 1;
+  cs.collocation_points.resize(ne * per, dc);
+  cs.collocation_element.assign(ne * per, -1);
+  cs.collocation_weights = Eigen::VectorXd::Zero(ne * per);
+  Eigen::MatrixXd R;
+  int k = 0;
+  for (int i = 0; i < ne; ++i) {
+    QuadratureRule q[2];
+    for (int a = 0; a < 2; ++a) {
+      q[a] = a < dc
+                 ? gaussLegendre(cs.degrees[a] + 1, cs.element_lower(i, a), cs.element_upper(i, a))
+                 : QuadratureRule{{0.0}, {1.0}};
+    }
+    for (std::size_t g1 = 0; g1 < q[1].points.size(); ++g1)
+      for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0, ++k) {
+        const double s[2] = {q[0].points[g0], q[1].points[g1]};
+        surf.basis(i, s, 1, R);
+        const Eigen::MatrixXd dx =
+            pointFromTable(R, surf.functions(i), space.controlPoints(), dc, 1).dx;  // s x dc
+        const double J = dc == 2
+                             ? Eigen::Vector3d(dx.col(0)).cross(Eigen::Vector3d(dx.col(1))).norm()
+                             : dx.col(0).norm();
+        for (int a = 0; a < dc; ++a) cs.collocation_points(k, a) = s[a];
+        cs.collocation_element[k] = i;
+        cs.collocation_weights(k) = q[0].weights[g0] * q[1].weights[g1] * J;
+      }
+  }
+}
+
 }  // namespace
 
 ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, int side,
-                                     const ParamBox& region, const std::string& name) {
+                                     const ParamBox& region, const std::string& name,
+                                     CollocationRule rule) {
   const int d = space.paramDim();
   FFRIGA_CHECK(d >= 2 && dir >= 0 && dir < d && (side == 0 || side == 1),
                "d " << d << " dir " << dir << " side " << side);
@@ -339,6 +376,11 @@ ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, in
   const ExtractedSurface surf(cs, space.weights());  // reads cs, which stays in place
   cs.outward_sign = outwardSign(space, surf, dir, side, sd, elems[0]);
 
+  cs.collocation_rule = rule;
+  if (rule == CollocationRule::kGauss) {
+    gaussCollocation(space, surf, cs);
+    return cs;
+  }
   const std::map<int, int> colloc = collocationIndices(cs.functions);
   const int nc = static_cast<int>(colloc.size());
   cs.collocation_points.resize(nc, dc);

@@ -24,6 +24,13 @@
 // Weight: w_k = integral over the region of R_k dA (m^2 in 3D, m along the curve in 2D:
 // the runtime multiplies by 2 pi r for axisymmetric bodies), by Gauss-Legendre with p+3
 // points per direction per element. The weights sum to the region's area (length).
+// Gauss collocation (the alternative, CollocationRule::kGauss): the p_a + 1 Gauss-Legendre
+// points per direction of every region element, each with its quadrature weight times the
+// surface Jacobian (m^2 in 3D, m in 2D): the penalty traction integrated by quadrature,
+// sum_g Phi(s_g)^T t(s_g) w_g ~ integral of Phi^T t dA, consistent with the surface measure
+// (in axisymmetric bodies the runtime's ring factor 2 pi r_g then is exact at each point,
+// where a Botella weight, the integral of R_k along the meridian times 2 pi r_k, is not:
+// the point on the axis has r_k = 0 and weight 0).
 // outward_sign: +1 if n = dx/ds_0 x dx/ds_1 (3D) or n = (dy/ds, -dx/ds) (2D, the tangent
 // rotated clockwise) points out of the body, judged against the inward parametric
 // direction at the centre of the first element.
@@ -37,6 +44,10 @@
 #include "common/splines/hierarchical_space.h"
 
 namespace ffriga {
+
+// Where the collocation points are (header comment): the paper's Botella points, one per
+// surface function, or Gauss-Legendre points of every element.
+enum class CollocationRule { kBotella, kGauss };
 
 // Contact surface: the boundary face (3D) or edge (2D) that holds the contact region, as
 // Bezier-extracted elements so that the runtime evaluates it without knot vectors:
@@ -64,11 +75,13 @@ struct ContactSurface {
   Eigen::MatrixXd collocation_points;    // nc x dc
   std::vector<int> collocation_element;  // nc
   Eigen::VectorXd collocation_weights;   // nc
+  CollocationRule collocation_rule = CollocationRule::kBotella;  // how they were placed
 };
 
 // `region`: lower/upper bounds of the surface parameters (entries 0..d-2). Throws
 // std::invalid_argument if dir/side are invalid or the region holds no face element.
 ContactSurface extractContactSurface(const HierarchicalSpace& space, int dir, int side,
-                                     const ParamBox& region, const std::string& name = "contact");
+                                     const ParamBox& region, const std::string& name = "contact",
+                                     CollocationRule rule = CollocationRule::kBotella);
 
 }  // namespace ffriga

@@ -214,6 +214,7 @@ ContactConfig readContact(const YamlDocument& doc, const YAML::Node& node, const
     const std::string k = Str() << key << ".region[" << s << "]";
     c.bounds.push_back({getDouble(doc, region[s][0], k), getDouble(doc, region[s][1], k)});
   }
+  c.gauss = getString(doc, node["collocation"], key + ".collocation") == "gauss";
   return c;
 }
 

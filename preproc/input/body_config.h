@@ -41,6 +41,7 @@ struct ContactConfig {
   int direction = 1;             // parametric direction normal to the face
   bool upper = true;             // face at the upper end of the direction
   std::vector<std::array<double, 2>> bounds;  // per remaining direction, increasing order
+  bool gauss = false;  // collocation: Gauss-Legendre points (else the paper's Botella points)
 };
 
 struct MarkerConfig {

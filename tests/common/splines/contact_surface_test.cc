@@ -118,6 +118,30 @@ TEST_CASE("axisymmetric contact surface: traces, weights, collocation", "[contac
   const PatchPoint p = evaluateSurface(cs, H, 0, s, 1);
   const Eigen::Vector2d n(p.dx(1, 0), -p.dx(0, 0));
   CHECK(cs.outward_sign * n.dot(p.x) > 0.0);
+
+  // Gauss collocation: the same surface, p + 1 Gauss-Legendre points per element (inside
+  // their element, none on the axis), weights quadrature x Jacobian that sum to the same
+  // arc and integrate the radius, sum w_g r_g = integral of r ds = R^2 (1 - cos theta) (the
+  // ring factor the runtime applies; Gauss rules of p + 1 points on smooth integrands over
+  // elements of ~1e-3 of the range: 1e-12 and 1e-10 relative).
+  const ContactSurface gs = extractContactSurface(H, 1, 1, region, "contact",
+                                                  CollocationRule::kGauss);
+  const int ne = static_cast<int>(gs.element_level.size());
+  REQUIRE(gs.collocation_points.rows() == ne * (gs.degrees[0] + 1));
+  CHECK(gs.collocation_rule == CollocationRule::kGauss);
+  CHECK(std::abs(gs.collocation_weights.sum() - arc) < 1e-12 * arc);
+  double moment = 0.0;  // integral of r ds over the arc from the pole: r^2 (1 - cos theta)
+  for (Eigen::Index k = 0; k < gs.collocation_points.rows(); ++k) {
+    const int e = gs.collocation_element[k];
+    const double sk = gs.collocation_points(k, 0);
+    CHECK(sk > gs.element_lower(e, 0));
+    CHECK(sk < gs.element_upper(e, 0));
+    const double at[1] = {sk};
+    moment += gs.collocation_weights(k) * evaluateSurface(gs, H, e, at, 0).x(0);
+  }
+  const double theta = std::atan2(x(0), x(1));
+  const double exact = 0.01 * 0.01 * (1.0 - std::cos(theta));
+  CHECK(std::abs(moment - exact) < 1e-10 * exact);
 }
 
 TEST_CASE("solid contact surface: traces, weights, collocation", "[contact]") {
