@@ -217,33 +217,45 @@ void polynomialTrace(const ContactSurface& cs, int i, int r, const double* s, in
     }
 }
 
+// Gauss-Legendre quadrature over element i of the surface, degrees[a] + extra points per
+// direction: visit(s, wq, R) at each point (first direction fastest) with its surface
+// parameters s, the quadrature weight times the surface Jacobian wq (m^2 in 3D, m in 2D),
+// and the basis table R there (values and first derivatives).
+template <class Visit>
+void elementQuadrature(const HierarchicalSpace& space, const ExtractedSurface& surf,
+                       const ContactSurface& cs, int i, int extra, Visit visit) {
+  const int dc = cs.dim;
+  QuadratureRule q[2];
+  for (int a = 0; a < 2; ++a) {
+    q[a] = a < dc ? gaussLegendre(cs.degrees[a] + extra, cs.element_lower(i, a),
+                                  cs.element_upper(i, a))
+                  : QuadratureRule{{0.0}, {1.0}};
+  }
+  Eigen::MatrixXd R;
+  for (std::size_t g1 = 0; g1 < q[1].points.size(); ++g1)
+    for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0) {
+      const double s[2] = {q[0].points[g0], q[1].points[g1]};
+      surf.basis(i, s, 1, R);
+      const Eigen::MatrixXd dx =
+          pointFromTable(R, surf.functions(i), space.controlPoints(), dc, 1).dx;  // s x dc
+      const double J = dc == 2
+                           ? Eigen::Vector3d(dx.col(0)).cross(Eigen::Vector3d(dx.col(1))).norm()
+                           : dx.col(0).norm();
+      visit(s, q[0].weights[g0] * q[1].weights[g1] * J, R);
+    }
+}
+
 // Weights: w_k = integral over the region of R_k dA, element by element, by
 // Gauss-Legendre with p + 3 points per direction.
 void collocationWeights(const HierarchicalSpace& space, const ExtractedSurface& surf,
                         const std::map<int, int>& colloc, ContactSurface& cs) {
-  const int dc = cs.dim;
   const int ne = static_cast<int>(cs.element_level.size());
-  Eigen::MatrixXd R;
   for (int i = 0; i < ne; ++i) {
-    QuadratureRule q[2];
-    for (int a = 0; a < 2; ++a) {
-      q[a] = a < dc
-                 ? gaussLegendre(cs.degrees[a] + 3, cs.element_lower(i, a), cs.element_upper(i, a))
-                 : QuadratureRule{{0.0}, {1.0}};
-    }
-    for (std::size_t g1 = 0; g1 < q[1].points.size(); ++g1)
-      for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0) {
-        const double s[2] = {q[0].points[g0], q[1].points[g1]};
-        surf.basis(i, s, 1, R);
-        const Eigen::MatrixXd dx =
-            pointFromTable(R, surf.functions(i), space.controlPoints(), dc, 1).dx;  // s x dc
-        const double J = dc == 2
-                             ? Eigen::Vector3d(dx.col(0)).cross(Eigen::Vector3d(dx.col(1))).norm()
-                             : dx.col(0).norm();
-        const double wq = q[0].weights[g0] * q[1].weights[g1] * J;
-        for (int c = 0; c < R.cols(); ++c)
-          cs.collocation_weights(colloc.at(surf.functions(i)[c])) += wq * R(0, c);
-      }
+    elementQuadrature(space, surf, cs, i, 3,
+                      [&](const double*, double wq, const Eigen::MatrixXd& R) {
+                        for (int c = 0; c < R.cols(); ++c)
+                          cs.collocation_weights(colloc.at(surf.functions(i)[c])) += wq * R(0, c);
+                      });
   }
 }
 
@@ -331,28 +343,14 @@ void gaussCollocation(const HierarchicalSpace& space, const ExtractedSurface& su
   cs.collocation_points.resize(ne * per, dc);
   cs.collocation_element.assign(ne * per, -1);
   cs.collocation_weights = Eigen::VectorXd::Zero(ne * per);
-  Eigen::MatrixXd R;
   int k = 0;
   for (int i = 0; i < ne; ++i) {
-    QuadratureRule q[2];
-    for (int a = 0; a < 2; ++a) {
-      q[a] = a < dc
-                 ? gaussLegendre(cs.degrees[a] + 1, cs.element_lower(i, a), cs.element_upper(i, a))
-                 : QuadratureRule{{0.0}, {1.0}};
-    }
-    for (std::size_t g1 = 0; g1 < q[1].points.size(); ++g1)
-      for (std::size_t g0 = 0; g0 < q[0].points.size(); ++g0, ++k) {
-        const double s[2] = {q[0].points[g0], q[1].points[g1]};
-        surf.basis(i, s, 1, R);
-        const Eigen::MatrixXd dx =
-            pointFromTable(R, surf.functions(i), space.controlPoints(), dc, 1).dx;  // s x dc
-        const double J = dc == 2
-                             ? Eigen::Vector3d(dx.col(0)).cross(Eigen::Vector3d(dx.col(1))).norm()
-                             : dx.col(0).norm();
-        for (int a = 0; a < dc; ++a) cs.collocation_points(k, a) = s[a];
-        cs.collocation_element[k] = i;
-        cs.collocation_weights(k) = q[0].weights[g0] * q[1].weights[g1] * J;
-      }
+    elementQuadrature(space, surf, cs, i, 1,
+                      [&](const double* s, double wq, const Eigen::MatrixXd&) {
+                        for (int a = 0; a < dc; ++a) cs.collocation_points(k, a) = s[a];
+                        cs.collocation_element[k] = i;
+                        cs.collocation_weights(k++) = wq;
+                      });
   }
 }
 

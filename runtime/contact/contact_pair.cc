@@ -36,7 +36,7 @@ ContactPair::ContactPair(std::string name, int a, const BodyModel& A, int surfac
   for (Side& s : side_) s.edge_reach = s.planar() ? edgeReach() : 0.0;
   pressure_.addRole(side_[0].weight);
   if (options_.both_roles) pressure_.addRole(side_[1].weight);
-  pressure_.factor = options_.both_roles ? 0.5 : 1.0;
+  pressure_.factor = roleFactor();
 }
 
 void ContactPair::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>& h,
@@ -158,7 +158,7 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   const double renew = penetrationTolerance();
   const TargetMotion motion[2] = {targetMotion(side_[0], wa.u, renew),
                                   targetMotion(side_[1], wb.u, renew)};
-  const double factor = options_.both_roles ? 0.5 : 1.0;
+  const double factor = roleFactor();
   ContactState s0, s1;
   collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0, state != nullptr);
   if (options_.both_roles)
@@ -330,10 +330,12 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     const PointResult& r = res[i];
     if (state) addDiagnostics(r, sc.weight(i), factor, *state);
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
-    if (record && r.active)
-      pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
-    else if (record)
-      pressure_.set(c, i, xs[i]);
+    if (record) {
+      if (r.active)
+        pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
+      else
+        pressure_.set(c, i, xs[i]);
+    }
   }
   addElasticForces(st, C, T, hC, hT, sums);
 }

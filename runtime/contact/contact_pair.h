@@ -137,6 +137,8 @@ class ContactPair : public SurfaceContact {
   // outgrows such a region must stop the run as before.
   static bool withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge,
                               const Eigen::VectorXd& x, const SurfaceProjection& p);
+  // Each role's share of a point's force: 1/2 where the two roles are averaged, else 1.
+  double roleFactor() const { return options_.both_roles ? 0.5 : 1.0; }
   World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
   // Side c's collocation points against the other side as the target: adds the generalised
   // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three

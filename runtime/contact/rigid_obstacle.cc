@@ -6,13 +6,22 @@
 
 namespace ffriga {
 
+namespace {
+
+// v / |v| for a nonzero finite v (what: the obstacle and its vector, for the message).
+Eigen::Vector3d unit(const Eigen::Vector3d& v, const std::string& name, const char* what) {
+  const double length = v.norm();
+  FFRIGA_CHECK(length > 0.0 && std::isfinite(length),
+               "obstacle '" << name << "': " << what << " (" << v.transpose() << ")");
+  return v / length;
+}
+
+}  // namespace
+
 RigidObstacle RigidObstacle::plane(std::string name, const Eigen::Vector3d& point,
                                    const Eigen::Vector3d& normal, double radius) {
-  const double length = normal.norm();
-  FFRIGA_CHECK(length > 0.0 && std::isfinite(length),
-               "obstacle '" << name << "': plane normal (" << normal.transpose() << ")");
-  return RigidObstacle(std::move(name), Shape::kPlane, point, normal / length,
-                       radius > 0.0 ? radius : 0.0);
+  const Eigen::Vector3d n = unit(normal, name, "plane normal");
+  return RigidObstacle(std::move(name), Shape::kPlane, point, n, radius > 0.0 ? radius : 0.0);
 }
 
 RigidObstacle RigidObstacle::sphere(std::string name, const Eigen::Vector3d& centre,
@@ -23,11 +32,9 @@ RigidObstacle RigidObstacle::sphere(std::string name, const Eigen::Vector3d& cen
 
 RigidObstacle RigidObstacle::cylinder(std::string name, const Eigen::Vector3d& point,
                                       const Eigen::Vector3d& axis, double radius) {
-  const double length = axis.norm();
-  FFRIGA_CHECK(length > 0.0 && std::isfinite(length),
-               "obstacle '" << name << "': cylinder axis (" << axis.transpose() << ")");
+  const Eigen::Vector3d d = unit(axis, name, "cylinder axis");
   FFRIGA_CHECK(radius > 0.0, "obstacle '" << name << "': cylinder radius " << radius);
-  return RigidObstacle(std::move(name), Shape::kCylinder, point, axis / length, radius);
+  return RigidObstacle(std::move(name), Shape::kCylinder, point, d, radius);
 }
 
 const char* RigidObstacle::shapeName() const {

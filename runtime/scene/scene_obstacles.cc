@@ -8,14 +8,21 @@ namespace ffriga {
 
 namespace {
 
+// A direction (a plane's normal, a cylinder's axis): any nonzero finite vector.
+Eigen::Vector3d readDirection(const YamlDocument& doc, const YAML::Node& node,
+                              const std::string& key) {
+  const Eigen::Vector3d v = vector3(doc, node, key);
+  const double length = v.norm();
+  if (!(length > 0.0) || !std::isfinite(length))
+    throw inputError(doc, node, key,
+                     Str() << "expected a nonzero direction, found (" << v.transpose() << ")");
+  return v;
+}
+
 RigidObstacle readPlane(const YamlDocument& doc, const YAML::Node& P, const std::string& name,
                         const std::string& k) {
   const Eigen::Vector3d point = vector3(doc, P["point"], k + ".point");
-  const Eigen::Vector3d normal = vector3(doc, P["normal"], k + ".normal");
-  const double length = normal.norm();
-  if (!(length > 0.0) || !std::isfinite(length))
-    throw inputError(doc, P["normal"], k + ".normal",
-                     Str() << "expected a nonzero direction, found (" << normal.transpose() << ")");
+  const Eigen::Vector3d normal = readDirection(doc, P["normal"], k + ".normal");
   const double radius = doubleOr(doc, P["radius"], k + ".radius", 0.0);
   return RigidObstacle::plane(name, point, normal, radius);
 }
@@ -29,11 +36,7 @@ RigidObstacle readSphere(const YamlDocument& doc, const YAML::Node& S, const std
 RigidObstacle readCylinder(const YamlDocument& doc, const YAML::Node& C, const std::string& name,
                            const std::string& k) {
   const Eigen::Vector3d point = vector3(doc, C["point"], k + ".point");
-  const Eigen::Vector3d axis = vector3(doc, C["axis"], k + ".axis");
-  const double length = axis.norm();
-  if (!(length > 0.0) || !std::isfinite(length))
-    throw inputError(doc, C["axis"], k + ".axis",
-                     Str() << "expected a nonzero direction, found (" << axis.transpose() << ")");
+  const Eigen::Vector3d axis = readDirection(doc, C["axis"], k + ".axis");
   return RigidObstacle::cylinder(name, point, axis, getDouble(doc, C["radius"], k + ".radius"));
 }
 

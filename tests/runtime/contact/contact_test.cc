@@ -57,6 +57,15 @@ std::pair<std::shared_ptr<FlexibleBodySid>, std::shared_ptr<FlexibleBodySid>> fa
   return {a, b};
 }
 
+// Positions and elastic coordinates of facingCaps' A and B (7 + 3 entries each) where the
+// caps, slightly turned and deformed, overlap near the middle.
+std::pair<Eigen::VectorXd, Eigen::VectorXd> overlappingStates() {
+  Eigen::VectorXd spA(7 + 3), spB(7 + 3);
+  spA << 0.01, -0.02, 0.0, 1.0, 0.01, -0.02, 0.03, 0.01, -0.02, 0.015;
+  spB << -0.01, 0.02, 0.0, 1.0, -0.02, 0.01, 0.02, -0.01, 0.02, 0.01;
+  return {spA, spB};
+}
+
 }  // namespace
 
 TEST_CASE("closest point: Newton finds the nearest point of curved NURBS surfaces", "[contact]") {
@@ -128,9 +137,7 @@ TEST_CASE("contact forces: equal and opposite, and the gradient of the penalty e
   ContactOptions opt;
   opt.penalty = 1e4;
   ContactPair pair("A-B", 0, A, 0, 1, B, 0, opt);
-  Eigen::VectorXd spA(7 + 3), spB(7 + 3);
-  spA << 0.01, -0.02, 0.0, 1.0, 0.01, -0.02, 0.03, 0.01, -0.02, 0.015;
-  spB << -0.01, 0.02, 0.0, 1.0, -0.02, 0.01, 0.02, -0.01, 0.02, 0.01;
+  const auto [spA, spB] = overlappingStates();
   auto forces = [&](const Eigen::VectorXd& pa, const Eigen::VectorXd& pb, Eigen::VectorXd& hA,
                     Eigen::VectorXd& hB, ContactState& st) {
     hA.setZero(9);
@@ -182,9 +189,7 @@ TEST_CASE("contact pressure field: c_p max(0, -g_n) of both roles, its resultant
   ContactOptions opt;
   opt.penalty = 1e4;
   ContactPair pair("A-B", 0, A, 0, 1, B, 0, opt);
-  Eigen::VectorXd spA(7 + 3), spB(7 + 3);
-  spA << 0.01, -0.02, 0.0, 1.0, 0.01, -0.02, 0.03, 0.01, -0.02, 0.015;
-  spB << -0.01, 0.02, 0.0, 1.0, -0.02, 0.01, 0.02, -0.01, 0.02, 0.01;
+  const auto [spA, spB] = overlappingStates();
   Eigen::VectorXd hA = Eigen::VectorXd::Zero(9), hB = Eigen::VectorXd::Zero(9);
   ContactState st;
   pair.evaluate(A, A.pose(spA.data()), B, B.pose(spB.data()), hA.data(), hB.data(), &st);
