@@ -26,36 +26,21 @@ import os
 import re
 import statistics
 import subprocess
+import sys
 import tempfile
 
 import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
+from result_checks import inertial_velocity, level_crossings  # noqa: E402
 RADIUS = 2.5e-3            # m, configs/bodies/rod2d_*.yaml
 LENGTHS = {"rod2d_100mm": 0.1, "rod2d_50mm": 0.05}
 V = 1.0                    # m/s, the striker's speed in both scenes
 RINGING_PERIOD = 0.6e-6    # s (tests/e2e/check_rods_end_on.py)
 SCENES = (("rods_end_on", "rod2d_100mm", "rod2d_100mm"),
           ("rods_end_on_unequal", "rod2d_50mm", "rod2d_100mm"))
-
-
-def inertial_axial_velocity(f, body):
-    """The frame origin's (centre of mass) inertial velocity along y, every row (m/s): the
-    scenes turn the struck rod by pi about x, which maps y to -y."""
-    v = f[f"bodies/{body}/velocity"][:, 1]
-    q = f[f"bodies/{body}/orientation"][:]
-    sign = 1 - 2 * (q[:, 1] ** 2 + q[:, 3] ** 2)  # R_yy of the quaternion (w, x, y, z), z = 0
-    return sign * v
-
-
-def smoothed_crossings(t, F, level):
-    k = max(1, int(round(RINGING_PERIOD / (t[1] - t[0]))))
-    Fs = np.convolve(F, np.ones(k) / k, mode="same")
-    above = Fs >= level
-    i = int(np.argmax(above))
-    j = len(F) - 1 - int(np.argmax(above[::-1]))
-    return t[i], t[j]
 
 
 def measure(result, material, striker, struck):
@@ -68,11 +53,11 @@ def measure(result, material, striker, struck):
         a = f.attrs
         t = f["time"][:]
         F = f["contacts/faces/normal_force"][:]
-        rise, fall = smoothed_crossings(t, F, plateau / 2)
+        rise, fall = level_crossings(t, F, plateau / 2, RINGING_PERIOD)
         window = (t >= rise + 2e-6) & (t <= fall - 2e-6)
         energy = f["energy/kinetic"][:] + f["energy/elastic"][:] + f["energy/contact"][:]
-        va = inertial_axial_velocity(f, "striker")
-        vb = inertial_axial_velocity(f, "struck")
+        va = inertial_velocity(f, "striker")[:, 1]  # along the axis, y
+        vb = inertial_velocity(f, "struck")[:, 1]
         status = a["status"].decode() if isinstance(a["status"], bytes) else a["status"]
         return dict(status=status, t=t, F=F, plateau=plateau, duration=duration,
                     mean=float(F[window].mean()) if window.any() else float("nan"),

@@ -24,7 +24,7 @@ import h5py
 import matplotlib.image
 import numpy as np
 
-from result_checks import Checks
+from result_checks import Checks, rotation
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -107,12 +107,9 @@ with h5py.File(result, "r") as f, h5py.File(sid, "r") as s:
         points += P.shape[0]
         cells += g["cells"].shape[0]
         vm.append(g["von_mises"][k])
-        # Where /bodies says: r + R (x0 + m u), R of the unit quaternion (p0, p1, p2, p3).
+        # Where /bodies says: r + R (x0 + m u), R of the unit quaternion orientation.
         r = f["bodies"][b]["position"][row]
-        p0, p1, p2, p3 = f["bodies"][b]["orientation"][row]
-        R = np.array([[1 - 2 * (p2 * p2 + p3 * p3), 2 * (p1 * p2 - p0 * p3), 2 * (p1 * p3 + p0 * p2)],
-                      [2 * (p1 * p2 + p0 * p3), 1 - 2 * (p1 * p1 + p3 * p3), 2 * (p2 * p3 - p0 * p1)],
-                      [2 * (p1 * p3 - p0 * p2), 2 * (p2 * p3 + p0 * p1), 1 - 2 * (p1 * p1 + p2 * p2)]])
+        R = rotation(f["bodies"][b]["orientation"][row])
         X0 = np.column_stack([x0, np.zeros(len(x0))])
         expected = r + X0 @ R.T + m * U
         # Single precision frames: 6e-8 relative of 2 cm.

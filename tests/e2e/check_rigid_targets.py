@@ -35,7 +35,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks  # noqa: E402
+from result_checks import Checks, inertial_velocity  # noqa: E402
 
 ffrsim, source, sids, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -107,12 +107,7 @@ with h5py.File(result, "r") as f:
     d = duration / duration_ref - 1
     check(abs(d) <= 2e-2, f"contact {1e6 * duration:.2f} us, Hertz {1e6 * duration_ref:.2f} us "
           f"({d:+.2%}, bound 2 %)")
-    v = f["bodies/ball/velocity"][:]
-    q = f["bodies/ball/orientation"][-1]
-    w, x, y, z = q
-    # Inertial z velocity: third row of the rotation matrix times the body-frame velocity.
-    vz = (2 * (x * z - w * y)) * v[-1, 0] + (2 * (y * z + w * x)) * v[-1, 1] + \
-         (1 - 2 * (x * x + y * y)) * v[-1, 2]
+    vz = inertial_velocity(f, "ball")[-1, 2]
     check(abs(-vz / V - 1) <= 1e-2, f"rebound {-vz:.5f} m/s, {-vz / V:.5f} of the approach "
           "(bound: within 1 %)")
     check(F[-1] == 0.0 and int(f.attrs["contact_events"]) == 1, "one contact, ended at the end")

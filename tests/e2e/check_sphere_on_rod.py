@@ -57,7 +57,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks  # noqa: E402
+from result_checks import Checks, inertial_velocity  # noqa: E402
 
 ROD_RADIUS = 5e-3   # m, configs/bodies/rod2d_struck.yaml
 ROD_LENGTH = 0.1    # m
@@ -102,14 +102,6 @@ def sears(m, K, Z, round_trip, v0, gap, t_end, h):
     return np.arange(n + 1) * h, F, v_sphere
 
 
-def axial_velocity(f, body):
-    """The frame origin's (centre of mass) inertial velocity along the impact, -y, every
-    row (m/s): the quaternion (w, x, y, z) turns about x only, R_yy = 1 - 2 (x^2 + z^2)."""
-    q = f[f"bodies/{body}/orientation"][:]
-    return -(1 - 2 * (q[:, 1] ** 2 + q[:, 3] ** 2)) * f[f"bodies/{body}/velocity"][:, 1]
-
-
-
 def main(igaprep, ffrsim, source, out):
     os.makedirs(out, exist_ok=True)
     check = Checks()
@@ -141,7 +133,8 @@ def main(igaprep, ffrsim, source, out):
         F = f["contacts/hit/normal_force"][:]
         begin, end = float(f.attrs["contact_begin_s"]), float(f.attrs["contact_end_s"])
         events = int(f.attrs["contact_events"])
-        v_ball, v_rod = axial_velocity(f, "ball"), axial_velocity(f, "rod")
+        # Along the impact, -y (the frame origin: the centre of mass).
+        v_ball, v_rod = -inertial_velocity(f, "ball")[:, 1], -inertial_velocity(f, "rod")[:, 1]
         energy = f["energy/kinetic"][:] + f["energy/elastic"][:] + f["energy/contact"][:]
         steps, wall = int(f.attrs["solver_steps"]), float(f.attrs["wall_time_s"])
 

@@ -1,8 +1,11 @@
 """Shared pieces of the end-to-end checks: a check list that prints ok / FAIL per item and
-the exit code, commands that must succeed, and the result file's status as text (h5py may
-return bytes)."""
+the exit code, commands that must succeed, the result file's status as text (h5py may
+return bytes), the bodies' rotations and inertial velocities, and the crossings of a level
+by a noisy series."""
 import subprocess
 import sys
+
+import numpy as np
 
 
 class Checks:
@@ -31,6 +34,37 @@ class Checks:
 
     def exit(self):
         sys.exit(1 if self.failures else 0)
+
+
+def rotation(q):
+    """The rotation matrix of the unit quaternion q = (w, x, y, z) (the result's
+    /bodies/<body>/orientation); q of shape (n, 4) gives n matrices (n, 3, 3)."""
+    w, x, y, z = np.moveaxis(np.asarray(q, float), -1, 0)
+    return np.moveaxis(np.array([
+        [1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+        [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+        [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]]), (0, 1), (-2, -1))
+
+
+def inertial_velocity(f, body):
+    """The body frame origin's inertial velocity at every row (n, 3), m/s: the result's
+    velocity is in body components (schemas/result_format.md), so R(q) v."""
+    v = f[f"bodies/{body}/velocity"][:]
+    return np.einsum("nij,nj->ni", rotation(f[f"bodies/{body}/orientation"][:]), v)
+
+
+def level_crossings(t, F, level, window):
+    """The first time the series F(t), averaged over `window` (s; a moving mean that smooths
+    a ringing of that period), rises through `level` and the last time it falls through it,
+    linearly interpolated between rows (s)."""
+    k = max(1, int(round(window / (t[1] - t[0]))))
+    F = np.convolve(F, np.ones(k) / k, mode="same")
+    above = F >= level
+    i = int(np.argmax(above))
+    j = len(F) - 1 - int(np.argmax(above[::-1]))
+    rise = t[i - 1] + (level - F[i - 1]) / (F[i] - F[i - 1]) * (t[i] - t[i - 1])
+    fall = t[j] + (F[j] - level) / (F[j] - F[j + 1]) * (t[j + 1] - t[j])
+    return rise, fall
 
 
 def signal_at_fraction(cmd, end_time, fraction, sig):
