@@ -37,8 +37,43 @@ double hertzStiffness(const HertzSphere& a, const HertzSphere& b) {
   return 4.0 / 3.0 * Estar * std::sqrt(Rstar);
 }
 
-HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v) {
+namespace {
+
+// delta_max under a steady load P: the root of f(d) = 2/5 K d^(5/2) - P d - 1/2 m* v^2,
+// convex for d > 0 with f(0) < 0, so that its one positive root is found by Newton's method
+// from any point to its right (monotone convergence): the unloaded root scaled up until
+// f > 0.
+double maxApproachUnderLoad(double K, double m, double v, double P) {
+  auto f = [&](double d) { return 0.4 * K * std::pow(d, 2.5) - P * d - 0.5 * m * v * v; };
+  auto df = [&](double d) { return K * std::pow(d, 1.5) - P; };
+  double d = std::pow(5.0 * m * v * v / (4.0 * K), 0.4);
+  while (f(d) <= 0.0) d *= 2.0;
+  for (int it = 0; it < 200; ++it) {
+    const double step = f(d) / df(d);
+    d -= step;
+    if (step <= 1e-15 * d) break;
+  }
+  return d;
+}
+
+// T = 2 int_0^dm dd / sqrt(g(d)), g(d) = v^2 + 2 P d / m - 4/5 K d^(5/2) / m, g(dm) = 0; with
+// d = dm (1 - s^2) the integrand 2 dm s / sqrt(g) is smooth (g ~ -g'(dm) dm s^2 near s = 0).
+double durationUnderLoad(double K, double m, double v, double P, double dm) {
+  const QuadratureRule q = gaussLegendre(40, 0.0, 1.0);
+  double I = 0.0;
+  for (std::size_t i = 0; i < q.points.size(); ++i) {
+    const double s = q.points[i], d = dm * (1.0 - s * s);
+    const double g = v * v + 2.0 * P * d / m - 0.8 * K * std::pow(d, 2.5) / m;
+    I += q.weights[i] * 2.0 * dm * s / std::sqrt(g);
+  }
+  return 2.0 * I;
+}
+
+}  // namespace
+
+HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v, double preload) {
   FFRIGA_CHECK(v > 0.0, "relative speed v = " << v);
+  FFRIGA_CHECK(std::isfinite(preload), "steady load P = " << preload);
   for (const HertzSphere* s : {&a, &b}) {
     FFRIGA_CHECK(s->youngs_modulus > 0 && s->radius > 0 && s->mass > 0 && s->poisson_ratio > -1 &&
                      s->poisson_ratio < 0.5,
@@ -47,9 +82,15 @@ HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v) {
   HertzImpact h;
   h.effective_mass = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
   h.stiffness = hertzStiffness(a, b);
-  h.max_approach = std::pow(5.0 * h.effective_mass * v * v / (4.0 * h.stiffness), 0.4);
+  h.preload = preload;
+  if (preload == 0.0) {  // closed form
+    h.max_approach = std::pow(5.0 * h.effective_mass * v * v / (4.0 * h.stiffness), 0.4);
+    h.duration = 2.0 * h.max_approach / v * durationIntegral();
+  } else {
+    h.max_approach = maxApproachUnderLoad(h.stiffness, h.effective_mass, v, preload);
+    h.duration = durationUnderLoad(h.stiffness, h.effective_mass, v, preload, h.max_approach);
+  }
   h.max_force = h.stiffness * std::pow(h.max_approach, 1.5);
-  h.duration = 2.0 * h.max_approach / v * durationIntegral();
   h.time_of_max = 0.5 * h.duration;
   return h;
 }
@@ -60,8 +101,8 @@ std::vector<double> hertzForceHistory(const HertzImpact& h, double v,
   // linearly (the table is fine enough that interpolation adds < 1e-8 relative).
   const int n = 20000;
   const double dt = h.duration / n;
-  const double c = h.stiffness / h.effective_mass;
-  auto acc = [c](double d) { return d > 0.0 ? -c * std::pow(d, 1.5) : 0.0; };
+  const double c = h.stiffness / h.effective_mass, p = h.preload / h.effective_mass;
+  auto acc = [c, p](double d) { return d > 0.0 ? p - c * std::pow(d, 1.5) : 0.0; };
   std::vector<double> force(n + 1, 0.0);
   double d = 0.0;
   double w = v;

@@ -81,7 +81,8 @@ void writeHertzReference(ResultFile& file, const std::string& pair, const HertzI
       {"hertz_approach_speed_m_s", approach_speed},
       {"hertz_max_approach_m", impact.max_approach},
       {"hertz_stiffness_N_m1_5", impact.stiffness},
-      {"hertz_effective_mass_kg", impact.effective_mass}};
+      {"hertz_effective_mass_kg", impact.effective_mass},
+      {"hertz_steady_load_N", impact.preload}};
   for (const auto& [name, v] : values) {
     file.setObjectAttribute(group, name, v);
     if (at_root) file.setAttribute(name, v);

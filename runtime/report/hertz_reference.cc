@@ -34,7 +34,9 @@ HertzSphere rigidPartner(const RigidObstacle& o) {
 
 // A sphere body against an obstacle: the approach speed along the normal at the nearest
 // point when the sphere's surface first touches, under gravity alone (v_n^2 + 2 g_n d with
-// d the initial clearance; a body that never gets there has none). A cylinder has none:
+// d the initial clearance; a body that never gets there has none), and gravity presses it
+// on during the contact: the steady load m g_n of hertzImpact (the obstacle does not fall
+// with it, unlike a partner body). A cylinder has none:
 // a sphere on it makes an elliptical contact, which the spheres' Hertz solution is not.
 std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
   if (c.obstacle().shape() == RigidObstacle::Shape::kCylinder) return std::nullopt;
@@ -52,7 +54,7 @@ std::optional<HertzReference> obstacleReference(const Scene& scene, const Obstac
   h.approach_speed = std::sqrt(v2);
   h.sphere_a = *sa;
   h.sphere_b = rigidPartner(c.obstacle());
-  h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed);
+  h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed, sa->mass * gn);
   return h;
 }
 

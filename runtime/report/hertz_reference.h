@@ -5,7 +5,8 @@
 // t = 0 (uniform gravity does not change it). A sphere against a rigid obstacle
 // (runtime/contact/rigid_obstacle.h) is Hertz's sphere on a rigid half-space or rigid sphere:
 // the obstacle infinitely stiff and heavy, the approach speed the body's speed along the
-// obstacle's normal when it first touches, under gravity alone. Used by ffrsim to print the
+// obstacle's normal when it first touches, under gravity alone, and the body's weight along
+// the normal a steady load during the contact. Used by ffrsim to print the
 // maximum force and contact duration next to Hertz.
 #pragma once
 

@@ -40,8 +40,10 @@ void printContact(const Scene& scene, const HertzReferences& hertz, const RunFig
   for (int c = 0; c < scene.system->numContacts(); ++c) {
     const auto& h = hertz[c];
     if (!h) continue;
-    std::printf("  Hertz (approach speed %.4g m/s): maximum force %.6g N, duration %.4g us\n",
-                h->approach_speed, h->impact.max_force, 1e6 * h->impact.duration);
+    std::printf("  Hertz (approach speed %.4g m/s", h->approach_speed);
+    if (h->impact.preload != 0.0) std::printf(", weight %.4g N along the normal", h->impact.preload);
+    std::printf("): maximum force %.6g N, duration %.4g us\n", h->impact.max_force,
+                1e6 * h->impact.duration);
     if (scene.system->numContacts() == 1) {
       const HertzDifference d = differenceFrom(*h, r);
       std::printf("  simulation / Hertz: force %+.2f %%", 100.0 * d.force);

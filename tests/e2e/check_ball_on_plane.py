@@ -6,19 +6,26 @@ impact of a sphere on a rigid half-space.
   check_ball_on_plane.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
 
 Hertz is computed here, independently of ffrsim (common/mechanics/hertz.cc), from the SID's
-material, radius and mass: E* = E / (1 - nu^2), R* = R, m* = m,
-  K = 4/3 E* sqrt(R*),  delta = (5 m* v^2 / (4 K))^(2/5),  F = K delta^(3/2),
-  T = 2.9432 delta / v   (2 delta / v int_0^1 dx / sqrt(1 - x^(5/2))),
-with v the bounce's approach speed: the ball's speed in the last row before the contact,
-carried to the contact's first row under gravity. Bounds:
+material, radius and mass: E* = E / (1 - nu^2), R* = R, m* = m, K = 4/3 E* sqrt(R*), and
+the ball's weight P = m g pressing it on during the contact (the floor does not fall with
+it): m d'' = P - K d^(3/2) from the approach speed v, so that
+  1/2 m v^2 + P d_max = 2/5 K d_max^(5/2),  F = K d_max^(3/2),
+  T = 2 int_0^d_max dd / sqrt(v^2 + 2 P d / m - 4/5 K d^(5/2) / m)
+(the weight, 0.32 N, raises the force peak by 0.33 % and the duration by 0.10 % over the
+unloaded closed forms), with v the bounce's approach speed: the ball's speed in the last
+row before the contact, carried to the contact's first row under gravity. By symmetry the
+frictionless rigid floor is the mid-plane of the Sect. 5 impact (two equal spheres at
++-0.1 m/s): without gravity this is that impact's half, whose elastodynamic FE reference
+lies +0.47 ... +0.68 % above Hertz (146.7-147.0 N; tests/e2e/check_energy_conserving_impact.py).
+Bounds:
   * 5 contact events (root attribute contact_events), the first one's figures also the
     headline attributes;
-  * each bounce's force peak within 1 % of Hertz (measured +0.59 ... +0.65 %: the paper's
-    penalty 1e17 N/m^3 on sphere2d_h3; the same model against a rigid sphere +0.48 %,
-    against the second sphere of Sect. 5 +0.46 %; a wrong collocation weight or a lost ring
-    factor moves it by tens of %);
+  * each bounce's force peak within 0.5 % of Hertz (the issue's bound; measured +0.32 % on
+    every bounce, and +0.65 % against the unloaded closed form:
+    the paper's penalty 1e17 N/m^3 on sphere2d_h3, whose Sect. 5 impact is +0.46 %; a wrong
+    collocation weight or a lost ring factor moves it by tens of %);
   * each bounce's duration (first to last row in contact, rows every 0.1 us, +0.1 us)
-    within 0.5 % of Hertz (measured -0.1 %; the rows resolve 0.12 %);
+    within 0.5 % of Hertz (measured -0.17 ... -0.30 %; the rows resolve 0.12 %);
   * rebound speed ratio >= 0.999 per bounce (the issue's bound; speeds taken at the rows
     next to the contact, carried to its ends under gravity);
   * total energy (kinetic + elastic + gravity + penalty) within 1e-4 of its initial value
@@ -37,17 +44,6 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from result_checks import Checks  # noqa: E402
 
-
-def duration_factor():
-    """2 int_0^1 dx / sqrt(1 - x^(5/2)), with x = 1 - s^2 (a smooth integrand), 40-point
-    Gauss-Legendre."""
-    x, w = np.polynomial.legendre.leggauss(40)
-    s, w = 0.5 * (x + 1), 0.5 * w
-    return 2 * np.sum(w * 2 * s / np.sqrt(1 - (1 - s * s) ** 2.5))
-
-
-DURATION_FACTOR = duration_factor()
-
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
 sid = f"{out}/sphere2d_h3.sid.h5"
@@ -58,11 +54,25 @@ subprocess.run([ffrsim, "-q", f"{source}/configs/scenes/ball_on_plane.yaml", "--
 check = Checks()
 
 
-def hertz(E, nu, R, m, v):
-    Estar = E / (1 - nu * nu)
-    K = 4.0 / 3.0 * Estar * np.sqrt(R)
-    delta = (5 * m * v * v / (4 * K)) ** 0.4
-    return K * delta ** 1.5, DURATION_FACTOR * delta / v
+def hertz(E, nu, R, m, v, P):
+    """Force peak and duration of Hertz's sphere on a rigid half-space under the steady load
+    P (the weight): the root of 1/2 m v^2 + P d = 2/5 K d^(5/2) by bisection to round-off,
+    T = 2 int_0^dm dd / sqrt(v^2 + 2 P d / m - 4/5 K d^(5/2) / m) with d = dm (1 - s^2),
+    60-point Gauss-Legendre (smooth integrand)."""
+    K = 4.0 / 3.0 * E / (1 - nu * nu) * np.sqrt(R)
+    f = lambda d: 0.4 * K * d ** 2.5 - P * d - 0.5 * m * v * v  # noqa: E731
+    lo, hi = 0.0, 1e-9
+    while f(hi) <= 0:
+        hi *= 2
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) <= 0 else (lo, mid)
+    dm = 0.5 * (lo + hi)
+    x, w = np.polynomial.legendre.leggauss(60)
+    s, w = 0.5 * (x + 1), 0.5 * w
+    d = dm * (1 - s * s)
+    g = v * v + 2 * P * d / m - 0.8 * K * d ** 2.5 / m
+    return K * dm ** 1.5, 2 * np.sum(w * 2 * dm * s / np.sqrt(g))
 
 
 def contact_events(active):
@@ -102,10 +112,10 @@ with h5py.File(result, "r") as f:
         v_out = vy[j + 1] + g * (t[j + 1] - t[j])
         peak = F[i:j + 1].max()
         duration = t[j] - t[i] + (t[i + 1] - t[i])
-        hf, ht = hertz(E, nu, R, mass, v_in)
-        check(abs(peak / hf - 1) <= 1e-2,
+        hf, ht = hertz(E, nu, R, mass, v_in, mass * g)
+        check(abs(peak / hf - 1) <= 5e-3,
               f"bounce {k + 1}: force peak {peak:.3f} N vs Hertz {hf:.3f} N at {v_in:.6f} m/s "
-              f"({peak / hf - 1:+.3%}, bound 1 %)")
+              f"({peak / hf - 1:+.3%}, bound 0.5 %)")
         check(abs(duration / ht - 1) <= 5e-3,
               f"bounce {k + 1}: duration {1e6 * duration:.2f} us vs Hertz {1e6 * ht:.2f} us "
               f"({duration / ht - 1:+.3%}, bound 0.5 %)")
@@ -118,11 +128,13 @@ with h5py.File(result, "r") as f:
     # that moves; the total is mostly m g y with the floor as datum).
     print(f"     total energy change {np.abs(total - total[0]).max() / (0.5 * mass * 0.01):.2e} "
           f"of the kinetic energy at 0.1 m/s")
-    hf0, ht0 = hertz(E, nu, R, mass, 0.1)
+    hf0, ht0 = hertz(E, nu, R, mass, 0.1, mass * g)
     a = pair.attrs
-    check(abs(a["hertz_max_force_N"] / hf0 - 1) <= 1e-9 and abs(a["hertz_duration_s"] / ht0 - 1) <= 1e-9,
+    check(abs(a["hertz_max_force_N"] / hf0 - 1) <= 1e-9 and abs(a["hertz_duration_s"] / ht0 - 1) <= 1e-9
+          and abs(a["hertz_steady_load_N"] / (mass * g) - 1) <= 1e-12,
           f"ffrsim's Hertz {a['hertz_max_force_N']:.6f} N, {1e6 * a['hertz_duration_s']:.4f} us "
-          f"vs {hf0:.6f} N, {1e6 * ht0:.4f} us")
+          f"under {a['hertz_steady_load_N']:.6f} N vs {hf0:.6f} N, {1e6 * ht0:.4f} us, m g "
+          f"{mass * g:.6f} N")
     check(a["body_b"] == "floor" and a["obstacle_shape"] == "plane"
           and np.allclose(pair["obstacle_normal"][:], [0, 1, 0]),
           f"pair group names the obstacle: body_b {a['body_b']}, shape {a['obstacle_shape']}")
