@@ -5,13 +5,14 @@
 namespace ffriga {
 
 BodyMarker markerFromSid(const FlexibleBodySid& sid, const Marker& m, int nq) {
-  FFRIGA_CHECK(sid.space_dim == 3, "markerFromSid needs 3D SID data");
+  const int d = sid.space_dim;
+  FFRIGA_CHECK(d == 2 || d == 3, "markerFromSid: SID space_dim " << d);
   BodyMarker b;
   b.name = m.name;
-  b.x0 = m.position.head<3>();
+  b.x0.head(d) = m.position.head(d);
   b.Phi = Eigen::MatrixXd::Zero(3, nq);
   for (std::size_t j = 0; j < m.functions.size() && nq > 0; ++j)
-    b.Phi += m.values(static_cast<int>(j)) * sid.Phi.middleRows(3 * m.functions[j], 3);
+    b.Phi.topRows(d) += m.values(static_cast<int>(j)) * sid.Phi.middleRows(d * m.functions[j], d);
   b.rotation_modes = nq == 0 || m.Psi.rows() == 3;
   b.Psi = b.rotation_modes && nq > 0 ? m.Psi : Eigen::MatrixXd::Zero(3, nq);
   return b;

@@ -28,7 +28,9 @@ struct BodyMarker {
                                // marker's rotation while the body has nq > 0)
 };
 
-// Marker `m` of a 3D SID with nq elastic coordinates (nq = 0 for a frozen body).
+// Marker `m` of a SID with nq elastic coordinates (nq = 0 for a frozen body). A 2D
+// (axisymmetric) SID's marker lies in the meridian plane: x0 = (r, y, 0), Phi's third row
+// zero, no rotation modes; only sensors use such markers.
 BodyMarker markerFromSid(const FlexibleBodySid& sid, const Marker& m, int nq);
 
 class FloatingBody3d;

@@ -28,9 +28,12 @@ Eigen::Matrix3d axesAlong(const Eigen::Vector3d& axis) {
 }
 
 // Reads one end {body, marker | position} of a joint or force element.
+// A sensor (`axisymmetric_ok`) may sit on an axisymmetric body; joints and force elements
+// may not.
 MarkerEnd readEnd(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
                   const std::map<std::string, int>& index, const BodyMarkers& markers,
-                  const MultibodySystem& sys, const Eigen::Vector3d* groundDefault) {
+                  const MultibodySystem& sys, const Eigen::Vector3d* groundDefault,
+                  bool axisymmetric_ok = false) {
   MarkerEnd e;
   const std::string body = getString(doc, node["body"], key + ".body");
   if (body == "ground") {
@@ -54,7 +57,7 @@ MarkerEnd readEnd(const YamlDocument& doc, const YAML::Node& node, const std::st
   }
   e.body = it->second;
   e.model = dynamic_cast<const FloatingBody3d*>(&sys.body(e.body));
-  if (!e.model)
+  if (!e.model && !axisymmetric_ok)
     throw inputError(doc, node["body"], key + ".body",
                      Str() << "body '" << body << "' is axisymmetric: joints and force elements "
                            << "need 3D or rigid bodies");
@@ -123,9 +126,8 @@ BodyMarkers collectMarkers(const YamlDocument& doc, const MultibodySystem& sys) 
   for (int b = 0; b < sys.numBodies(); ++b) {
     const BodyModel& body = sys.body(b);
     const std::string k = Str() << "bodies[" << b << "]";
-    if (body.spaceDim() == 3)
-      for (const Marker& m : body.sid().markers)
-        out[b].emplace(m.name, markerFromSid(body.sid(), m, body.nq()));
+    for (const Marker& m : body.sid().markers)
+      out[b].emplace(m.name, markerFromSid(body.sid(), m, body.nq()));
     const YAML::Node list = bodies[b]["markers"];
     for (std::size_t i = 0; list && i < list.size(); ++i) {
       const std::string key = Str() << k << ".markers[" << i << "]";
@@ -264,7 +266,7 @@ void addSensors(const YamlDocument& doc, const std::map<std::string, int>& index
     YAML::Node end;
     end["body"] = list[i]["body"];
     end["marker"] = list[i]["marker"];
-    Sensor s{name, readEnd(doc, end, k, index, markers, sys, nullptr)};
+    Sensor s{name, readEnd(doc, end, k, index, markers, sys, nullptr, true)};
     sys.addSensor(std::move(s));
   }
 }

@@ -24,10 +24,28 @@ void MultibodySystem::addLineForces(const double* y, std::vector<Eigen::VectorXd
 void MultibodySystem::sensorState(const double* y, int s, Eigen::Vector3d& position,
                                   Eigen::Vector3d& velocity) const {
   const MarkerEnd& e = sensors_[s].end;
-  MarkerKinematics k;
-  markerPoint(*e.model, y + pos_offset_[e.body], y + vel_offset_[e.body], e.marker, k);
-  position = k.value;
-  velocity = k.rate;
+  const double* sp = y + pos_offset_[e.body];
+  const double* sv = y + vel_offset_[e.body];
+  if (e.model) {
+    MarkerKinematics k;
+    markerPoint(*e.model, sp, sv, e.marker, k);
+    position = k.value;
+    velocity = k.rate;
+    return;
+  }
+  // An axisymmetric body (runtime/bodies/axisymmetric_body.h): the meridian point
+  // (r, y) + Phi q is at (r, Y + s y) in the world, and moves with (0, V) + A Phi qdot.
+  const BodyModel& body = *bodies_[e.body];
+  FFRIGA_CHECK(body.spaceDim() == 2, "sensor '" << sensors_[s].name << "' on body '"
+                                                << body.name() << "': no marker kinematics");
+  const BodyPose pose = body.pose(sp);
+  const int n = body.nq();
+  const Eigen::Vector2d local =
+      e.marker.x0.head<2>() + e.marker.Phi.topRows<2>() * Eigen::Map<const Eigen::VectorXd>(sp + 1, n);
+  const Eigen::Vector2d rate =
+      e.marker.Phi.topRows<2>() * Eigen::Map<const Eigen::VectorXd>(sv + 1, n);
+  position << pose.origin + pose.A * local, 0.0;
+  velocity << Eigen::Vector2d(0.0, sv[0]) + pose.A * rate, 0.0;
 }
 
 std::vector<LineForceState> MultibodySystem::lineForceStates(const double* y) const {

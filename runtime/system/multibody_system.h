@@ -55,7 +55,9 @@ struct SystemEnergies {
   double force_elements = 0.0;  // J, potential energy of the force elements (springs, Hertz)
 };
 
-// A marker whose inertial position and velocity the result file records.
+// A marker whose inertial position and velocity the result file records: on a 3D, rigid
+// or frozen body (end.model set) or on an axisymmetric one (end.model null; its marker in
+// the meridian plane, world z = 0).
 struct Sensor {
   std::string name;
   MarkerEnd end;

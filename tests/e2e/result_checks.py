@@ -53,16 +53,29 @@ def inertial_velocity(f, body):
     return np.einsum("nij,nj->ni", rotation(f[f"bodies/{body}/orientation"][:]), v)
 
 
+def moving_mean(t, F, window):
+    """F(t) averaged over `window` (s) at every row (rows equally spaced; a centred moving
+    mean, which smooths a ringing of that period)."""
+    k = max(1, int(round(window / (t[1] - t[0]))))
+    return np.convolve(F, np.ones(k) / k, mode="same")
+
+
+def first_rise(t, F, level, window):
+    """The first time F(t), averaged over `window` (moving_mean), rises through `level`,
+    linearly interpolated between rows (s)."""
+    F = moving_mean(t, F, window)
+    i = int(np.argmax(F >= level))
+    return t[i - 1] + (level - F[i - 1]) / (F[i] - F[i - 1]) * (t[i] - t[i - 1])
+
+
 def level_crossings(t, F, level, window):
     """The first time the series F(t), averaged over `window` (s; a moving mean that smooths
     a ringing of that period), rises through `level` and the last time it falls through it,
     linearly interpolated between rows (s)."""
-    k = max(1, int(round(window / (t[1] - t[0]))))
-    F = np.convolve(F, np.ones(k) / k, mode="same")
+    rise = first_rise(t, F, level, window)
+    F = moving_mean(t, F, window)
     above = F >= level
-    i = int(np.argmax(above))
     j = len(F) - 1 - int(np.argmax(above[::-1]))
-    rise = t[i - 1] + (level - F[i - 1]) / (F[i] - F[i - 1]) * (t[i] - t[i - 1])
     fall = t[j] + (F[j] - level) / (F[j] - F[j + 1]) * (t[j + 1] - t[j])
     return rise, fall
 
