@@ -38,7 +38,7 @@ void LineForce::apply(const double* spA, const double* svA, const double* spB, c
   const double T = tension(l, rate);
   if (a_.model) addMarkerForce(*a_.model, spA, a_.marker, T * n, ha);
   addMarkerForce(*b_.model, spB, b_.marker, -T * n, hb);
-  if (state) *state = LineForceState{l, rate, T, energy(l)};
+  if (state) *state = LineForceState{l, rate, T, energy(l), dissipation(l, rate)};
 }
 
 }  // namespace ffriga

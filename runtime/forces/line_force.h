@@ -21,6 +21,7 @@ struct LineForceState {
   double rate = 0.0;     // m/s
   double tension = 0.0;  // N (> 0 pulls together; negative: pushes apart)
   double energy = 0.0;   // J, potential of the conservative part
+  double dissipation = 0.0;  // W, power its dissipative part takes out of the system (>= 0)
 };
 
 class LineForce : public ForceElement {
@@ -39,6 +40,8 @@ class LineForce : public ForceElement {
  protected:
   virtual double tension(double length, double rate) const = 0;
   virtual double energy(double length) const = 0;
+  // The power (W) the element's dissipative part takes out of the system: (T - V'(l)) l'.
+  virtual double dissipation(double /*length*/, double /*rate*/) const { return 0.0; }
 
  private:
   MarkerEnd a_, b_;

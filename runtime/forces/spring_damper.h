@@ -16,6 +16,7 @@ class SpringDamper : public LineForce {
  protected:
   double tension(double l, double rate) const override { return k_ * (l - l0_) + c_ * rate; }
   double energy(double l) const override { return 0.5 * k_ * (l - l0_) * (l - l0_); }
+  double dissipation(double, double rate) const override { return c_ * rate * rate; }
 
  private:
   double k_, c_, l0_;

@@ -113,6 +113,9 @@ struct SensorSample {
 
 struct EnergySample {
   double kinetic = 0.0, elastic = 0.0, contact = 0.0, gravity = 0.0, force_elements = 0.0;  // J
+  // J, the energy modal damping and dampers took out since t = 0 (the time integral of
+  // MultibodySystem::dissipationPower, accumulated by the time loop).
+  double dissipated = 0.0;
 };
 
 struct OutputSample {

@@ -32,6 +32,7 @@ RestartRecordWriter::RestartRecordWriter(ResultFile& file, int state_size, long 
   // Every attribute a flush writes exists from the start: in SWMR mode they are written in
   // place (runtime/output/result_file.h).
   h5::writeAttribute(c, group_.id(), "time_s", 0.0);
+  h5::writeAttribute(c, group_.id(), "dissipated_J", 0.0);
   for (const auto& [name, value] : restartFigures(RunFigures{}, 0, 0.0))
     h5::writeAttribute(c, group_.id(), "figure_" + name, value);
   h5::writeAttribute(c, group_.id(), "rows", 0.0);
@@ -40,6 +41,7 @@ RestartRecordWriter::RestartRecordWriter(ResultFile& file, int state_size, long 
 void RestartRecordWriter::write(const OutputSample& sample) {
   ++rows_;
   time_ = sample.time;
+  dissipated_ = sample.energy.dissipated;
   y_ = sample.state;
   pending_ = true;
 }
@@ -50,6 +52,7 @@ void RestartRecordWriter::flush() {
   c.check(H5Dwrite(state_.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, y_.data()),
           "H5Dwrite 'restart/state'");
   h5::writeAttribute(c, group_.id(), "time_s", time_);
+  h5::writeAttribute(c, group_.id(), "dissipated_J", dissipated_);
   for (const auto& [name, value] : figures_)
     h5::writeAttribute(c, group_.id(), "figure_" + name, value);
   h5::writeAttribute(c, group_.id(), "rows", static_cast<double>(rows_));
@@ -93,6 +96,7 @@ RestartRecord readRestartRecord(const std::string& path) {
   r.rows = static_cast<long>(h5::readDoubleAttribute(c, g.id(), "rows"));
   if (r.rows < 1) throw InputError(Str() << path << ": the restart record holds no row yet");
   r.state = h5::readVector(c, g.id(), "state");
+  if (H5Aexists(g.id(), "dissipated_J")) r.dissipated = h5::readDoubleAttribute(c, g.id(), "dissipated_J");
   const int n = static_cast<int>(H5Aget_num_attrs(g.id()));
   for (int i = 0; i < n; ++i) {
     char name[256];

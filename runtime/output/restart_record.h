@@ -21,6 +21,7 @@ struct RestartRecord {
   double time = 0.0;  // s, of the last row on disk
   long rows = 0;      // rows on disk consistent with `state`
   Eigen::VectorXd state;
+  double dissipated = 0.0;  // J, /energy/dissipated at that row (0 in records without it)
   std::map<std::string, double> figures;  // by name: see simulation.cc (runFigures)
   // From the root attributes:
   std::string status;
@@ -52,7 +53,7 @@ class RestartRecordWriter : public OutputSink {
   h5::Handle group_, state_;
   bool pending_ = false;  // a row was appended since the record was written
   long rows_ = 0;
-  double time_ = 0.0;
+  double time_ = 0.0, dissipated_ = 0.0;
   Eigen::VectorXd y_;
   std::map<std::string, double> figures_;
 };

@@ -97,6 +97,8 @@ void ResultRows::createEnergies() {
   gravity_ = &file_.series(energy.id(), "gravity", 0, "J", "potential energy of gravity");
   force_energy_ = &file_.series(energy.id(), "force_elements", 0, "J",
                                 "potential energy of the force elements (springs, Hertz contact)");
+  dissipated_ = &file_.series(energy.id(), "dissipated", 0, "J",
+                              "energy taken out by modal damping and dampers since t = 0");
 }
 
 void ResultRows::createJoints(const OutputLayout& layout) {
@@ -156,6 +158,7 @@ void ResultRows::write(const OutputSample& sample) {
   contact_->append(&sample.energy.contact);
   gravity_->append(&sample.energy.gravity);
   force_energy_->append(&sample.energy.force_elements);
+  dissipated_->append(&sample.energy.dissipated);
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     joints_[j].force->append(sample.joints[j].force.data());
     joints_[j].moment->append(sample.joints[j].moment.data());

@@ -45,7 +45,7 @@ class ResultRows : public OutputSink {
   };
   std::vector<ForceElementSeries> force_elements_;
   Series *kinetic_ = nullptr, *elastic_ = nullptr, *contact_ = nullptr, *gravity_ = nullptr,
-         *force_energy_ = nullptr;
+         *force_energy_ = nullptr, *dissipated_ = nullptr;
 };
 
 }  // namespace ffriga

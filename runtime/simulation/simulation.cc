@@ -148,9 +148,31 @@ void addContactOutputs(double dtc, bool in_contact, double tPrev, double t,
 }
 
 // The output rows inside the last step, by interpolation (CVodeGetDky); y is scratch.
+// The energy (J) modal damping and dampers took out between a and b inside the last step:
+// MultibodySystem::dissipationPower on CVODE's interpolant, 3-point Gauss-Legendre (exact
+// for the power's polynomial part up to degree 5: the interpolant's order is at most 5,
+// the power quadratic in the velocities, so the rule's error is of the step's own order).
+double dissipatedBetween(const BdfIntegrator& integ, const MultibodySystem& system, double a,
+                         double b, Eigen::VectorXd& work) {
+  if (!(b > a)) return 0.0;
+  static const double x[3] = {-0.7745966692414834, 0.0, 0.7745966692414834};
+  static const double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  double sum = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    integ.interpolate(0.5 * (a + b) + 0.5 * (b - a) * x[i], work);
+    sum += w[i] * system.dissipationPower(work.data());
+  }
+  return 0.5 * (b - a) * sum;
+}
+
+// Output rows at `times` inside the step that ended at t; `dissipatedAt` gives
+// /energy/dissipated at a time inside the step.
+template <class Dissipated>
 void writeOutputs(BdfIntegrator& integ, MultibodySystem& system, ResultWriter& writer,
-                  const std::vector<double>& times, double t, Eigen::VectorXd& y) {
+                  const std::vector<double>& times, double t, Eigen::VectorXd& y,
+                  const Dissipated& dissipatedAt) {
   for (const double to : times) {
+    const double dissipated = dissipatedAt(std::min(to, t));
     integ.interpolate(std::min(to, t), y);
     // The interpolant leaves the constraint manifold by about the local error: an output
     // row is projected onto it like every step's state.
@@ -159,7 +181,9 @@ void writeOutputs(BdfIntegrator& integ, MultibodySystem& system, ResultWriter& w
                                << "constraints and the quasi-static manifold did not converge");
     }
     system.normalize(y.data());
-    writer.append(outputSample(system, to, y));
+    OutputSample sample = outputSample(system, to, y);
+    sample.energy.dissipated = dissipated;
+    writer.append(sample);
   }
 }
 
@@ -210,13 +234,20 @@ class TimeLoop {
   int phase_ = 0;  // 0 before contact, 1 during, 2 after
   double t_ = 0.0, tPrev_ = 0.0;
   SolverCounts before_;  // of the parts of the run before a restart
+  // /energy/dissipated at tPrev_ (J); whether anything dissipates at all.
+  double dissipated_ = 0.0;
+  bool dissipates_ = false;
+  Eigen::VectorXd work_;
   double wallBefore_ = 0.0;
   IntegratorStats last_;
 };
 
 void TimeLoop::begin(const Eigen::VectorXd& y, const RestartRecord* resume) {
+  dissipates_ = system_.dissipates();
+  work_.resize(y.size());
   if (resume) {
     t_ = resume->time;
+    dissipated_ = resume->dissipated;
     restoreFigures(resume->figures, report_.figures, phase_, wallBefore_);
     before_ = report_.figures.solver;
     // The next regular output strictly after the record's row.
@@ -263,7 +294,12 @@ void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::Vect
   while (nextOut_ <= nOut_ && outputTime(nextOut_) <= t_ * (1.0 + 1e-14))
     times.push_back(outputTime(nextOut_++));
   addContactOutputs(settings_.contact_output_interval, contact || phase_ == 1, tPrev_, t_, times);
-  writeOutputs(integ, system_, writer_, times, t_, y);
+  auto dissipatedAt = [&](double to) {
+    return dissipates_ ? dissipated_ + dissipatedBetween(integ, system_, tPrev_, to, work_)
+                       : 0.0;
+  };
+  writeOutputs(integ, system_, writer_, times, t_, y, dissipatedAt);
+  dissipated_ = dissipatedAt(t_);
   if (contact && phase_ != 1) ++f.contact_events;
   if (contact && f.contact_begin < 0.0) f.contact_begin = 0.5 * (tPrev_ + t_);
   if (!contact && phase_ == 1 && f.contact_end < 0.0) f.contact_end = 0.5 * (tPrev_ + t_);

@@ -48,6 +48,36 @@ void MultibodySystem::sensorState(const double* y, int s, Eigen::Vector3d& posit
   velocity << Eigen::Vector2d(0.0, sv[0]) + pose.A * rate, 0.0;
 }
 
+bool MultibodySystem::dissipates() const {
+  for (const auto& b : bodies_) {
+    if (b->nq() == 0 || !b->damping().any()) continue;
+    // Quasi-static coordinates have no velocity: damping on them alone takes nothing out
+    // (the default for every SID body whose file damps its stiff modes).
+    Eigen::VectorXd dynamic = Eigen::VectorXd::Ones(b->nq());
+    for (const int i : b->quasiStatic().index) dynamic(i) = 0.0;
+    if ((b->damping().cwiseAbs() * dynamic).any() ||
+        (b->damping().cwiseAbs().transpose() * dynamic).any())
+      return true;
+  }
+  return !line_forces_.empty();  // evaluated: zero for undamped springs and Hertz contacts
+}
+
+double MultibodySystem::dissipationPower(const double* y) const {
+  double power = 0.0;
+  for (int b = 0; b < numBodies(); ++b) {
+    const BodyModel& body = *bodies_[b];
+    if (body.nq() == 0) continue;
+    const Eigen::Map<const Eigen::VectorXd> qd(y + vel_offset_[b] + body.numRigidVelocities(),
+                                               body.nq());
+    // Diagonal De (to 1e-8 relative, BodyModel::diagonalElasticity): O(nq), as the rates.
+    power += body.diagonalElasticity() ? qd.dot(body.dampingDiagonal().cwiseProduct(qd))
+                                       : qd.dot(body.damping() * qd);
+  }
+  if (!line_forces_.empty())
+    for (const LineForceState& s : lineForceStates(y)) power += s.dissipation;
+  return power;
+}
+
 std::vector<LineForceState> MultibodySystem::lineForceStates(const double* y) const {
   std::vector<Eigen::VectorXd> h(bodies_.size());
   for (int b = 0; b < numBodies(); ++b) h[b].setZero(bodies_[b]->numVelocities());

@@ -135,6 +135,13 @@ class MultibodySystem : public OdeSystem {
   std::vector<JointReaction> jointReactions(const double* y);
   // The force elements' states at y.
   std::vector<LineForceState> lineForceStates(const double* y) const;
+  // True if anything in the system dissipates energy: a body's modal damping De != 0 or a
+  // force element with a damper.
+  bool dissipates() const;
+  // The power (W) that modal damping (qdot^T De qdot of each body) and the force elements'
+  // dampers take out of the system at y; the time integral is the result's
+  // /energy/dissipated (runtime/simulation/simulation.cc).
+  double dissipationPower(const double* y) const;
   // Newton-matrix Jacobian: difference quotients of each body's own rates with the contact
   // forces frozen (cheap: no contact search), plus the analytic low-rank contact stiffness
   // (contact_pair.h) mapped by M(q)^-1.
