@@ -31,18 +31,14 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
 from check_sphere_on_rod import GAP, ROD_LENGTH, ROD_RADIUS, V0, sears  # noqa: E402
-from result_checks import inertial_velocity  # noqa: E402
+from result_checks import contact_runs, inertial_velocity, sphere_on_rod_figures  # noqa: E402
 
 STEP = 2e-9  # s, the reference's RK4 step (converged to 1e-5: the check's docstring)
 
 
 def contacts(t, F):
     """(start, end, peak) of each interval with F > 0, ends at the last rows with force."""
-    on = np.flatnonzero(F > 0)
-    if len(on) == 0:
-        return []
-    runs = np.split(on, np.flatnonzero(np.diff(on) > 1) + 1)
-    return [(t[r[0]], t[r[-1]], F[r].max()) for r in runs]
+    return [(t[i], t[j], F[i:j + 1].max()) for i, j in contact_runs(F)]
 
 
 def igaprep_run(igaprep, body, sid):
@@ -98,15 +94,9 @@ def main():
             wall, nq, ndof = igaprep_run(igaprep, os.path.join(ROOT, "configs", "bodies", f"{name}.yaml"),
                                          os.path.join(tmp, f"{name}.sid.h5"))
             lines.append(f"igaprep {name}: ndof {ndof}, nq {nq}, {wall:.2f} s")
-        with h5py.File(os.path.join(tmp, "sphere2d_h3.sid.h5"), "r") as s:
-            m, R = float(s["sid/mass"][()]), float(s["geometry/radius"][()])
-        with h5py.File(os.path.join(tmp, "rod2d_struck.sid.h5"), "r") as s:
-            M = float(s["sid/mass"][()])
-            rho, E = float(s["material/density"][()]), float(s["material/youngs_modulus"][()])
-            nu = float(s["material/poisson_ratio"][()])
-        c = np.sqrt(E / rho)
-        Z = rho * c * np.pi * ROD_RADIUS ** 2
-        K = 4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R)
+        b = sphere_on_rod_figures(os.path.join(tmp, "sphere2d_h3.sid.h5"),
+                                  os.path.join(tmp, "rod2d_struck.sid.h5"), ROD_RADIUS)
+        m, M, c, Z, K = b["m"], b["M"], b["c"], b["Z"], b["K"]
         lines.append(f"sphere m = {m:.5f} kg, rod M = {M:.5f} kg (m / M = {m / M:.3f}), c = {c:.1f} m/s, "
                      f"Z = rho c A = {Z:.1f} kg/s, 2 L / c = {2e6 * ROD_LENGTH / c:.2f} us, "
                      f"K = {K:.4e} N/m^1.5, v0 = {V0} m/s")

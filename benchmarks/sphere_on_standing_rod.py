@@ -32,7 +32,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
 from check_sphere_on_standing_rod import (FLOOR_GAP, FLOOR_PENALTY, GAP, ROD_LENGTH,  # noqa: E402
                                           ROD_RADIUS, V0, contacts, standing_rod)
-from result_checks import inertial_velocity  # noqa: E402
+from result_checks import inertial_velocity, sphere_on_rod_figures  # noqa: E402
+from sphere_on_rod import igaprep_run  # noqa: E402
 
 STEP = 5e-9  # s, the reference's RK4 step (h / 2 agrees to 1e-4 and better: the check)
 
@@ -79,20 +80,12 @@ def main():
     lines = []
     with tempfile.TemporaryDirectory() as tmp:
         for name in ("sphere2d_h3", "rod2d_standing"):
-            r = subprocess.run([igaprep, os.path.join(ROOT, "configs", "bodies", f"{name}.yaml"),
-                                "-o", os.path.join(tmp, f"{name}.sid.h5")],
-                               check=True, capture_output=True, text=True)
-            fig = {k: re.search(rf"^\s*{k}\s+(\S+)", r.stdout, re.M) for k in ("ndof", "nq", "total wall time")}
-            lines.append(f"igaprep {name}: " + ", ".join(f"{k} {v.group(1)}" for k, v in fig.items() if v))
-        with h5py.File(os.path.join(tmp, "sphere2d_h3.sid.h5"), "r") as s:
-            m, R = float(s["sid/mass"][()]), float(s["geometry/radius"][()])
-        with h5py.File(os.path.join(tmp, "rod2d_standing.sid.h5"), "r") as s:
-            M = float(s["sid/mass"][()])
-            rho, E = float(s["material/density"][()]), float(s["material/youngs_modulus"][()])
-            nu = float(s["material/poisson_ratio"][()])
-        c = np.sqrt(E / rho)
-        Z = rho * c * np.pi * ROD_RADIUS ** 2
-        K = 4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R)
+            wall, nq, ndof = igaprep_run(igaprep, os.path.join(ROOT, "configs", "bodies", f"{name}.yaml"),
+                                         os.path.join(tmp, f"{name}.sid.h5"))
+            lines.append(f"igaprep {name}: ndof {ndof}, nq {nq}, {wall:.2f} s")
+        b = sphere_on_rod_figures(os.path.join(tmp, "sphere2d_h3.sid.h5"),
+                                  os.path.join(tmp, "rod2d_standing.sid.h5"), ROD_RADIUS)
+        m, M, rho, c, Z, K = b["m"], b["M"], b["rho"], b["c"], b["Z"], b["K"]
         lines.append(f"sphere m = {m:.5f} kg, rod M = {M:.5f} kg, c = {c:.1f} m/s, Z = {Z:.1f} kg/s, "
                      f"2 L / c = {2e6 * ROD_LENGTH / c:.2f} us, floor layer rho c / c_p = "
                      f"{1e6 * rho * c / FLOOR_PENALTY:.2f} us, v0 = {V0} m/s")

@@ -42,7 +42,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks  # noqa: E402
+from result_checks import Checks, contact_runs  # noqa: E402
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
@@ -75,14 +75,6 @@ def hertz(E, nu, R, m, v, P):
     return K * dm ** 1.5, 2 * np.sum(w * 2 * dm * s / np.sqrt(g))
 
 
-def contact_events(active):
-    """(first, last) row indices of each run of rows in contact."""
-    on = np.concatenate([[False], active > 0, [False]]).astype(int)
-    starts = np.flatnonzero(np.diff(on) == 1)
-    ends = np.flatnonzero(np.diff(on) == -1) - 1
-    return list(zip(starts, ends))
-
-
 with h5py.File(sid, "r") as s:
     mass = float(s["sid/mass"][()])
     E = float(s["material/youngs_modulus"][()])
@@ -100,7 +92,7 @@ with h5py.File(result, "r") as f:
     F = pair["normal_force"][:]
     # The ball is turned about x: its velocity rows are body components, inertial v_y = -v[1].
     vy = -f["bodies/ball/velocity"][:, 1]
-    events = contact_events(pair["active_points"][:])
+    events = contact_runs(pair["active_points"][:])
     check(len(events) == 5, f"{len(events)} bounces in the rows (expected 5)")
     check(int(f.attrs["contact_events"]) == 5,
           f"root attribute contact_events = {int(f.attrs['contact_events'])} (expected 5)")

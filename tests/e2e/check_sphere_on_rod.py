@@ -57,7 +57,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks, inertial_velocity  # noqa: E402
+from result_checks import Checks, inertial_velocity, sphere_on_rod_figures  # noqa: E402
 
 ROD_RADIUS = 5e-3   # m, configs/bodies/rod2d_struck.yaml
 ROD_LENGTH = 0.1    # m
@@ -109,20 +109,10 @@ def main(igaprep, ffrsim, source, out):
     for name in ("sphere2d_h3", "rod2d_struck"):
         sids[name] = f"{out}/{name}.sid.h5"
         check.run([igaprep, "-q", f"{source}/configs/bodies/{name}.yaml", "-o", sids[name]])
-    with h5py.File(sids["sphere2d_h3"], "r") as s:
-        m = float(s["sid/mass"][()])
-        R = float(s["geometry/radius"][()])
-    with h5py.File(sids["rod2d_struck"], "r") as s:
-        M = float(s["sid/mass"][()])
-        rho = float(s["material/density"][()])
-        E = float(s["material/youngs_modulus"][()])
-        nu = float(s["material/poisson_ratio"][()])
-    area = np.pi * ROD_RADIUS ** 2
-    check(abs(M / (rho * area * ROD_LENGTH) - 1) <= 1e-9,
+    b = sphere_on_rod_figures(sids["sphere2d_h3"], sids["rod2d_struck"], ROD_RADIUS)
+    m, M, rho, c, Z, K = b["m"], b["M"], b["rho"], b["c"], b["Z"], b["K"]
+    check(abs(M / (rho * np.pi * ROD_RADIUS ** 2 * ROD_LENGTH) - 1) <= 1e-9,
           f"rod mass {M:.9g} kg = rho pi a^2 L (the exact geometry)")
-    c = np.sqrt(E / rho)
-    Z = rho * c * area
-    K = 4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R)
 
     result = f"{out}/sphere_on_rod.h5"
     check.run([ffrsim, "-q", f"{source}/configs/scenes/sphere_on_rod.yaml", "--sid-path", out,

@@ -61,7 +61,8 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks, inertial_velocity  # noqa: E402
+from result_checks import (Checks, contact_runs, inertial_velocity,  # noqa: E402
+                           sphere_on_rod_figures)
 
 ROD_RADIUS = 4e-3     # m, configs/bodies/rod2d_standing.yaml
 ROD_LENGTH = 0.25     # m
@@ -122,11 +123,8 @@ def standing_rod(m, K, Z, rho_c, travel, c_p, v0, gap, floor_gap, t_end, h):
 def contacts(t, F):
     """(begin, end, peak) of each run of rows with F > 0: begin and end the rows before the
     first and after the last positive one (the touching instants lie between)."""
-    on = np.concatenate([[False], F > 0, [False]]).astype(int)
-    starts = np.flatnonzero(np.diff(on) == 1)
-    ends = np.flatnonzero(np.diff(on) == -1) - 1
     return [(t[max(i - 1, 0)], t[min(j + 1, len(t) - 1)], F[i:j + 1].max())
-            for i, j in zip(starts, ends)]
+            for i, j in contact_runs(F)]
 
 
 def main(igaprep, ffrsim, source, out):
@@ -136,20 +134,10 @@ def main(igaprep, ffrsim, source, out):
     for name in ("sphere2d_h3", "rod2d_standing"):
         sids[name] = f"{out}/{name}.sid.h5"
         check.run([igaprep, "-q", f"{source}/configs/bodies/{name}.yaml", "-o", sids[name]])
-    with h5py.File(sids["sphere2d_h3"], "r") as s:
-        m = float(s["sid/mass"][()])
-        R = float(s["geometry/radius"][()])
-    with h5py.File(sids["rod2d_standing"], "r") as s:
-        M = float(s["sid/mass"][()])
-        rho = float(s["material/density"][()])
-        E = float(s["material/youngs_modulus"][()])
-        nu = float(s["material/poisson_ratio"][()])
-    area = np.pi * ROD_RADIUS ** 2
-    check(abs(M / (rho * area * ROD_LENGTH) - 1) <= 1e-9,
+    b = sphere_on_rod_figures(sids["sphere2d_h3"], sids["rod2d_standing"], ROD_RADIUS)
+    m, M, rho, c, Z, K = b["m"], b["M"], b["rho"], b["c"], b["Z"], b["K"]
+    check(abs(M / (rho * np.pi * ROD_RADIUS ** 2 * ROD_LENGTH) - 1) <= 1e-9,
           f"rod mass {M:.9g} kg = rho pi a^2 L (the exact geometry)")
-    c = np.sqrt(E / rho)
-    Z = rho * c * area
-    K = 4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R)
 
     result = f"{out}/sphere_on_standing_rod.h5"
     check.run([ffrsim, "-q", f"{source}/configs/scenes/sphere_on_standing_rod.yaml",

@@ -5,6 +5,7 @@ by a noisy series."""
 import subprocess
 import sys
 
+import h5py
 import numpy as np
 
 
@@ -51,6 +52,31 @@ def inertial_velocity(f, body):
     velocity is in body components (schemas/result_format.md), so R(q) v."""
     v = f[f"bodies/{body}/velocity"][:]
     return np.einsum("nij,nj->ni", rotation(f[f"bodies/{body}/orientation"][:]), v)
+
+
+def contact_runs(F):
+    """(first, last) row indices of each run of rows with F > 0 (a force or a count of
+    active points)."""
+    on = np.concatenate([[False], np.asarray(F) > 0, [False]]).astype(int)
+    starts = np.flatnonzero(np.diff(on) == 1)
+    ends = np.flatnonzero(np.diff(on) == -1) - 1
+    return list(zip(starts, ends))
+
+
+def sphere_on_rod_figures(sphere_sid, rod_sid, rod_radius):
+    """What the one-dimensional sphere-on-rod models need, read from the SIDs: the sphere's
+    mass m and radius R, the rod's mass M, density rho, E and nu, its bar speed
+    c = sqrt(E / rho), impedance Z = rho c pi a^2, and Hertz's K = 4/3 E* sqrt(R) with
+    E* = E / (2 (1 - nu^2)) (sphere and rod of the rod's material)."""
+    with h5py.File(sphere_sid, "r") as s:
+        m, R = float(s["sid/mass"][()]), float(s["geometry/radius"][()])
+    with h5py.File(rod_sid, "r") as s:
+        M = float(s["sid/mass"][()])
+        rho, E = float(s["material/density"][()]), float(s["material/youngs_modulus"][()])
+        nu = float(s["material/poisson_ratio"][()])
+    c = np.sqrt(E / rho)
+    return dict(m=m, R=R, M=M, rho=rho, E=E, nu=nu, c=c, Z=rho * c * np.pi * rod_radius ** 2,
+                K=4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R))
 
 
 def moving_mean(t, F, window):
