@@ -12,6 +12,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -43,7 +44,30 @@ struct MarkerEnd {
   // Joints only: the joint axes, columns e1 e2 e3, in body-frame components (ground:
   // inertial), set by Joint::setAxes.
   Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+  // Joints only: the translation modes of the body's quasi-static coordinates, taken out of
+  // marker.Phi by detachQuasiStatic (3 x nq, zero in the other columns; empty if none).
+  Eigen::MatrixXd quasi_static_Phi;
 };
+
+// A joint's end on a body with quasi-static coordinates (runtime/bodies/quasi_static_modes.h)
+// -- schemas/multibody.md "Joints and quasi-static coordinates":
+//
+// jointHeldCoordinates: the quasi-static coordinates `qs` (stiffness diagonal k of all
+// elastic coordinates, 1/s^2) that carry the marker's flexibility, so that the joint must
+// hold them and they keep their inertia. The marker's static flexibility is the trace of
+// its compliance, sum_i |Phi_i|^2 / k_i over the elastic coordinates (Me = E), and the
+// same with Psi for rotations (rotations: the joint constrains them). The quasi-static
+// coordinates with the largest shares are returned until those left carry at most
+// kJointOmittedFlexibility of it, translations and rotations each.
+constexpr double kJointOmittedFlexibility = 1e-3;
+std::vector<int> jointHeldCoordinates(const BodyMarker& marker, const Eigen::VectorXd& k,
+                                      const std::vector<int>& qs, bool rotations);
+
+// detachQuasiStatic: the joint holds the marker as the body's dynamic coordinates move it,
+// so the remaining quasi-static coordinates' (elastic indices `index`) columns of
+// marker.Phi and marker.Psi become zero (kept in quasi_static_Phi for the offset the result
+// file reports).
+void detachQuasiStatic(MarkerEnd& end, const std::vector<int>& index);
 
 // A fixed point of a rigid body (or of the ground): no modes.
 BodyMarker fixedMarker(const std::string& name, const Eigen::Vector3d& x0);

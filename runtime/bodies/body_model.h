@@ -19,6 +19,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -56,6 +57,8 @@ class BodyModel {
   // frequency >= cutoff_hz; none before the first call. Throws InputError unless Me = E and
   // Ke is diagonal (diagonalElasticity()).
   void setQuasiStatic(double cutoff_hz);
+  // Gives the listed elastic coordinates back their inertia (joints: jointHeldCoordinates).
+  void keepDynamic(const std::vector<int>& coordinates) { qs_ = qs_.without(coordinates); }
   const QuasiStaticModes& quasiStatic() const { return qs_; }
   // Applies the quasi-static coordinates' rates to the body's rates (positionRates() into
   // spdot, accelerations() into accel; QuasiStaticModes::apply).

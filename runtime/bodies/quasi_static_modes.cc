@@ -1,5 +1,6 @@
 #include "runtime/bodies/quasi_static_modes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/base/error.h"
@@ -23,6 +24,23 @@ QuasiStaticModes QuasiStaticModes::select(const Eigen::VectorXd& k, const Eigen:
   m.stiffness = Eigen::Map<const Eigen::VectorXd>(stiff.data(), static_cast<Eigen::Index>(stiff.size()));
   m.reach.resize(m.size());
   for (int s = 0; s < m.size(); ++s) m.reach(s) = Phi.col(m.index[s]).cwiseAbs().maxCoeff();
+  return m;
+}
+
+QuasiStaticModes QuasiStaticModes::without(const std::vector<int>& dynamic) const {
+  QuasiStaticModes m;
+  m.cutoff_hz = cutoff_hz;
+  m.tau = tau;
+  std::vector<int> keep;
+  for (int s = 0; s < size(); ++s)
+    if (std::find(dynamic.begin(), dynamic.end(), index[s]) == dynamic.end()) keep.push_back(s);
+  m.stiffness.resize(static_cast<Eigen::Index>(keep.size()));
+  m.reach.resize(static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t j = 0; j < keep.size(); ++j) {
+    m.index.push_back(index[keep[j]]);
+    m.stiffness(j) = stiffness(keep[j]);
+    m.reach(j) = reach(keep[j]);
+  }
   return m;
 }
 

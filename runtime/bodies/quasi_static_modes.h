@@ -55,6 +55,10 @@ struct QuasiStaticModes {
   static QuasiStaticModes select(const Eigen::VectorXd& k, const Eigen::MatrixXd& Phi,
                                  double cutoff_hz);
 
+  // The same coordinates less those listed in `dynamic` (elastic indices), which keep their
+  // inertia (joints: runtime/bodies/body_marker.h jointHeldCoordinates).
+  QuasiStaticModes without(const std::vector<int>& dynamic) const;
+
   // A body's rates (layout of body_model.h: spdot over its positions, accel over its
   // velocities, nrp / nrv rigid entries first): for each quasi-static coordinate i,
   // (dq_i/dt, dqdot_i/dt) = (v_i, a_i)  ->  (a_i / (k_i tau), 0).

@@ -47,6 +47,9 @@ struct JointReaction {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N m, about the marker point R_b
   double violation = 0.0;  // largest |g| of the joint's position equations (m or 1)
+  // m: the largest displacement of the joint's two marker points by their bodies'
+  // quasi-static coordinates, which the joint does not hold (MarkerEnd::quasi_static_Phi)
+  double quasi_static_offset = 0.0;
 };
 
 class Joint {

@@ -100,6 +100,7 @@ struct JointSample {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // N, on end b's body, inertial
   Eigen::Vector3d moment = Eigen::Vector3d::Zero();  // N m, about end b's marker point
   double violation = 0.0;                            // m or 1
+  double quasi_static_offset = 0.0;                  // m (JointReaction)
 };
 
 struct ForceElementSample {

@@ -114,6 +114,10 @@ void ResultRows::createJoints(const OutputLayout& layout) {
                              "point, inertial");
     s.violation = &file_.series(g.id(), "violation", 0, "m or 1",
                                 "largest |g| of the joint's position-level equations");
+    s.quasi_static_offset =
+        &file_.series(g.id(), "quasi_static_offset", 0, "m",
+                      "largest displacement of the joint's marker points by their bodies' "
+                      "quasi-static coordinates, which the joint does not hold");
     joints_.push_back(s);
   }
 }
@@ -163,6 +167,7 @@ void ResultRows::write(const OutputSample& sample) {
     joints_[j].force->append(sample.joints[j].force.data());
     joints_[j].moment->append(sample.joints[j].moment.data());
     joints_[j].violation->append(&sample.joints[j].violation);
+    joints_[j].quasi_static_offset->append(&sample.joints[j].quasi_static_offset);
   }
   for (std::size_t f = 0; f < force_elements_.size(); ++f) {
     const ForceElementSample& e = sample.force_elements[f];

@@ -37,7 +37,7 @@ class ResultRows : public OutputSink {
   };
   std::vector<ContactSeries> contacts_;
   struct JointSeries {
-    Series *force, *moment, *violation;
+    Series *force, *moment, *violation, *quasi_static_offset;
   };
   std::vector<JointSeries> joints_;
   struct ForceElementSeries {

@@ -206,16 +206,6 @@ void applyQuasiStaticRule(const YamlDocument& doc, const YAML::Node& B, const st
       rule.value = getDouble(doc, Q["above_first_elastic"], k + ".quasi_static.above_first_elastic");
     }
   }
-  // Joints impose acceleration-level constraints that assume every coordinate has inertia
-  // (multibody_system.h): quasi-static coordinates are not combined with them (yet).
-  const YAML::Node joints = doc.root["joints"];
-  if (joints && joints.size() > 0) {
-    if (Q && rule.kind != QuasiStaticRule::Kind::kNone)
-      throw inputError(doc, Q, k + ".quasi_static",
-                       "quasi-static coordinates are not available in scenes with joints: give "
-                       "'quasi_static: false' and damp the high modes (body file 'damping')");
-    return;
-  }
   const double cutoff = quasiStaticCutoffHz(model.stiffnessDiagonal(), rule);
   if (!std::isfinite(cutoff)) return;
   try {

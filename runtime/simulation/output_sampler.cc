@@ -67,6 +67,7 @@ void sampleMultibody(MultibodySystem& system, const Eigen::VectorXd& y, OutputSa
     for (const JointReaction& r : system.jointReactions(y.data())) {
       JointSample s;
       s.force = r.force, s.moment = r.moment, s.violation = r.violation;
+      s.quasi_static_offset = r.quasi_static_offset;
       out.joints.push_back(s);
     }
   }

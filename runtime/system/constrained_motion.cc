@@ -1,6 +1,7 @@
 // Joints and force elements of the multibody system: the constraint equations, the
 // multipliers of the acceleration-level constraints and the projection onto the position
 // and velocity constraints (formulas in runtime/system/multibody_system.h).
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -133,9 +134,10 @@ void MultibodySystem::constraintMobility(const double* y, const Eigen::MatrixXd&
 }
 
 void MultibodySystem::applyConstraints(const double* y, double* ydot) {
-  // The multipliers assume inertia in every coordinate (scene.cc refuses quasi-static
-  // coordinates in scenes with joints).
-  FFRIGA_ASSERT(!hasQuasiStatic(), "joints with quasi-static coordinates");
+  // With quasi-static coordinates the joints do not act on them (detachQuasiStatic: their
+  // columns of J are zero), and M^-1 is the full one: where a_s = 0 (the quasi-static
+  // manifold) these multipliers are those of the mode-acceleration equations
+  // (schemas/multibody.md "Joints and quasi-static coordinates").
   ConstraintRows rows;
   constraintRows(y, rows);
   Eigen::MatrixXd X;
@@ -157,6 +159,15 @@ std::vector<JointReaction> MultibodySystem::jointReactions(const double* y) {
   for (std::size_t j = 0; j < joints_.size(); ++j) {
     const int k = joints_[j]->numEquations(), b = joints_[j]->end(1).body;
     out[j] = joints_[j]->reaction(y + pos_offset_[b], rows.joints[j], lambda_.segment(row, k));
+    for (int i = 0; i < 2; ++i) {
+      const MarkerEnd& e = joints_[j]->end(i);
+      if (e.quasi_static_Phi.size() == 0) continue;
+      const BodyModel& body = *bodies_[e.body];
+      const Eigen::Map<const Eigen::VectorXd> q(y + pos_offset_[e.body] + body.numRigidPositions(),
+                                                body.nq());
+      out[j].quasi_static_offset =
+          std::max(out[j].quasi_static_offset, (e.quasi_static_Phi * q).norm());
+    }
     row += k;
   }
   return out;
@@ -167,6 +178,12 @@ bool MultibodySystem::projectionMobility(const double* y, const ConstraintRows& 
                                          Eigen::LLT<Eigen::MatrixXd>& S) const {
   if (!rigidOnly) {
     constraintMobility(y, rows.J, X, S);
+    // Quasi-static coordinates have no velocity and follow from the others: the projection
+    // leaves them (their columns of J are zero, so S = J X is unchanged).
+    const int v0 = vel_offset_[0];
+    for (int b = 0; b < numBodies(); ++b)
+      for (const int i : bodies_[b]->quasiStatic().index)
+        X.row(vel_offset_[b] - v0 + bodies_[b]->numRigidVelocities() + i).setZero();
     return true;
   }
   // X = M_r^-1 J_r^T over the rigid velocity columns only (elastic coordinates held).

@@ -76,6 +76,14 @@ void MultibodySystem::rhs(double, const double* y, double* ydot) {
 void MultibodySystem::evaluateRates(const double* y, double* ydot,
                                     std::vector<ContactState>* states,
                                     std::vector<LineForceState>* lineStates) {
+  constrainedAccelerations(y, ydot, states, lineStates);
+  for (int b = 0; b < numBodies(); ++b)
+    bodies_[b]->applyQuasiStatic(ydot + pos_offset_[b], ydot + vel_offset_[b]);
+}
+
+void MultibodySystem::constrainedAccelerations(const double* y, double* ydot,
+                                               std::vector<ContactState>* states,
+                                               std::vector<LineForceState>* lineStates) {
   contactForces(y, h_, states);
   addLineForces(y, h_, lineStates);
   for (int b = 0; b < numBodies(); ++b) {
@@ -84,7 +92,6 @@ void MultibodySystem::evaluateRates(const double* y, double* ydot,
     const double* sv = y + vel_offset_[b];
     body.positionRates(sp, sv, ydot + pos_offset_[b]);
     body.accelerations(sp, sv, h_[b].data(), gravity_, ydot + vel_offset_[b]);
-    body.applyQuasiStatic(ydot + pos_offset_[b], ydot + vel_offset_[b]);
   }
   if (!joints_.empty()) applyConstraints(y, ydot);
 }
@@ -303,11 +310,14 @@ bool MultibodySystem::structuredJacobian(double, const double* y, const double* 
   J.k.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
   J.c.conservativeResize(static_cast<Eigen::Index>(J.q_index.size()));
   J.f_rate = Eigen::Map<const Eigen::VectorXd>(fRate.data(), static_cast<Eigen::Index>(fRate.size()));
-  // Quasi-static coordinates: their position rows are their acceleration rows / (k tau).
+  // With joints the rates are the constrained accelerations (projectJacobian), and a
+  // quasi-static coordinate's rate is its constrained acceleration / (k tau)
+  // (evaluateRates): the projection first, then the quasi-static rows, position row <-
+  // acceleration row / (k tau), of every column (the joints' included).
+  if (!joints_.empty()) projectJacobian(y, J, col);
   for (int b = 0; b < numBodies(); ++b)
     bodies_[b]->quasiStatic().applyToRows(pos_offset_[b] + bodies_[b]->numRigidPositions(),
                                           vel_offset_[b] + bodies_[b]->numRigidVelocities(), J.U);
-  if (!joints_.empty()) projectJacobian(y, J, col);
   FFRIGA_ASSERT(col == r, "structured Jacobian: " << col << " of " << r << " columns");
   return true;
 }

@@ -197,8 +197,14 @@ class MultibodySystem : public OdeSystem {
   std::vector<LineForceState> rhs_line_states_;
   void layout();
   // dy/dt at y; the contact pairs' diagnostics into `states` if given.
+  // = constrainedAccelerations, then each body's quasi-static rates (QuasiStaticModes::apply).
   void evaluateRates(const double* y, double* ydot, std::vector<ContactState>* states,
                      std::vector<LineForceState>* lineStates);
+  // dy/dt at y before the quasi-static coordinates' rates: position rates, and the
+  // accelerations a = M^-1 (h + J^T lambda) of every coordinate, quasi-static ones included
+  // (their a_s is what the relaxation and the projection drive to zero).
+  void constrainedAccelerations(const double* y, double* ydot, std::vector<ContactState>* states,
+                                std::vector<LineForceState>* lineStates);
   int totalVelocities() const { return size_ - (bodies_.empty() ? 0 : vel_offset_[0]); }
   // Adds the generalised forces at y of the force elements without stiffness terms (line
   // forces, evaluated in difference quotients) to h (states: optional diagnostics).
@@ -259,7 +265,8 @@ class MultibodySystem : public OdeSystem {
                       const std::vector<Eigen::MatrixXd>& Sinv, StructuredJacobian& J,
                       int& col) const;
   // A step of projectQuasiStatic(): the contact and force elements' forces at y into h_ and
-  // the accelerations of each body with quasi-static coordinates (first[b] >= 0) into accel[b].
+  // the accelerations of each body with quasi-static coordinates (first[b] >= 0) into accel[b]
+  // (with joints the constrained ones, constrainedAccelerations).
   void quasiStaticAccelerations(const double* y, const std::vector<int>& first,
                                 std::vector<Eigen::VectorXd>& accel);
 };

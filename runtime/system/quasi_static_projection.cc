@@ -110,6 +110,14 @@ bool MultibodySystem::hasQuasiStatic() const {
 
 void MultibodySystem::quasiStaticAccelerations(const double* y, const std::vector<int>& first,
                                                std::vector<Eigen::VectorXd>& accel) {
+  if (!joints_.empty()) {
+    // The joints couple the bodies: the constrained accelerations of all of them.
+    Eigen::VectorXd rates(size_);
+    constrainedAccelerations(y, rates.data(), nullptr, nullptr);
+    for (int b = 0; b < numBodies(); ++b)
+      if (first[b] >= 0) accel[b] = rates.segment(vel_offset_[b], bodies_[b]->numVelocities());
+    return;
+  }
   contactForces(y, h_, nullptr);
   addLineForces(y, h_, nullptr);
   for (int b = 0; b < numBodies(); ++b) {

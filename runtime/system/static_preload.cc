@@ -10,20 +10,32 @@ namespace ffriga {
 
 namespace {
 
-// State indices of the elastic coordinates and of their accelerations.
+// State indices of the elastic coordinates and the rows of the rates that hold their
+// accelerations, times `factor`: a dynamic coordinate's acceleration is its velocity's rate
+// (factor 1); a quasi-static one's is its position's rate times k tau
+// (runtime/bodies/quasi_static_modes.h: dq/dt = a / (k tau)).
 struct ElasticIndex {
   std::vector<int> q, a;
-  std::vector<double> k;  // stiffness diagonal (1/s^2)
+  std::vector<double> k;       // stiffness diagonal (1/s^2)
+  std::vector<double> factor;  // on the rate in row a
 };
 
 ElasticIndex elasticIndex(const MultibodySystem& sys) {
   ElasticIndex e;
   for (int b = 0; b < sys.numBodies(); ++b) {
     const BodyModel& body = sys.body(b);
+    const int q0 = sys.positionOffset(b) + body.numRigidPositions();
     for (int i = 0; i < body.nq(); ++i) {
-      e.q.push_back(sys.positionOffset(b) + body.numRigidPositions() + i);
+      e.q.push_back(q0 + i);
       e.a.push_back(sys.velocityOffset(b) + body.numRigidVelocities() + i);
       e.k.push_back(body.sid().Ke(i, i));
+      e.factor.push_back(1.0);
+    }
+    const QuasiStaticModes& qs = body.quasiStatic();
+    for (int s = 0; s < qs.size(); ++s) {
+      const std::size_t j = e.q.size() - body.nq() + qs.index[s];
+      e.a[j] = q0 + qs.index[s];
+      e.factor[j] = qs.stiffness(s) * qs.tau;
     }
   }
   return e;
@@ -42,7 +54,7 @@ PreloadReport staticPreload(MultibodySystem& sys, Eigen::VectorXd& y) {
       throw ComputeError("static preload: the joints could not be closed at the deformed markers");
     sys.rhs(0.0, state.data(), ydot.data());
     F.resize(n);
-    for (int i = 0; i < n; ++i) F(i) = ydot(ix.a[i]);
+    for (int i = 0; i < n; ++i) F(i) = ix.factor[i] * ydot(ix.a[i]);
   };
   auto elasticForce = [&](const Eigen::VectorXd& state) {
     double f = 0.0;
