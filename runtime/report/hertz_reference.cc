@@ -58,10 +58,21 @@ std::optional<HertzReference> obstacleReference(const Scene& scene, const Obstac
   return h;
 }
 
+// Whether body b is an end of a joint: its effective mass at the contact is the
+// mechanism's (a pendulum's I_pivot / d^2, not m) and its approach speed the mechanism's
+// motion, neither of which the free-sphere formulas know.
+bool jointed(const MultibodySystem& system, int b) {
+  for (int j = 0; j < system.numJoints(); ++j)
+    if (system.joint(j).end(0).body == b || system.joint(j).end(1).body == b) return true;
+  return false;
+}
+
 }  // namespace
 
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   const SurfaceContact& c = scene.system->contact(pair);
+  if (jointed(*scene.system, c.bodyA()) || (c.bodyB() >= 0 && jointed(*scene.system, c.bodyB())))
+    return std::nullopt;
   if (const auto* o = dynamic_cast<const ObstacleContact*>(&c)) return obstacleReference(scene, *o);
   const BodyModel& a = scene.system->body(c.bodyA());
   const BodyModel& b = scene.system->body(c.bodyB());

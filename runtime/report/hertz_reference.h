@@ -25,7 +25,8 @@ struct HertzReference {
   HertzSphere sphere_a{}, sphere_b{};  // the pair's bodies A and B as Hertz sees them
 };
 
-// Empty when a body is not a sphere or the bodies do not approach each other.
+// Empty when a body is not a sphere, is held by a joint (its effective mass and approach
+// speed are the mechanism's), or the bodies do not approach each other.
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair);
 
 // Hertz's prediction for each contact pair of the scene (empty where it has none).
