@@ -49,6 +49,8 @@ std::map<std::string, double> restartFigures(const RunFigures& r, int phase, dou
       {"max_contact_force_time_s", r.max_contact_force_time},
       {"contact_begin_s", r.contact_begin},
       {"contact_end_s", r.contact_end},
+      {"first_contact_peak_N", r.first_contact_peak},
+      {"contact_run_peak_N", r.contact_run_peak},
       {"contact_events", static_cast<double>(r.contact_events)},
       {"steps", static_cast<double>(r.solver.steps)},
       {"rhs_evals", static_cast<double>(r.solver.rhs_evals)},
@@ -83,6 +85,8 @@ void restoreFigures(const std::map<std::string, double>& record, RunFigures& r, 
   r.max_contact_force_time = getOr("max_contact_force_time_s", -1.0);
   r.contact_begin = getOr("contact_begin_s", -1.0);
   r.contact_end = getOr("contact_end_s", -1.0);
+  r.first_contact_peak = get("first_contact_peak_N");
+  r.contact_run_peak = get("contact_run_peak_N");
   r.contact_events = count("contact_events");
   r.solver.steps = count("steps");
   r.solver.rhs_evals = count("rhs_evals");

@@ -37,9 +37,13 @@ struct RunFigures {
   double max_contact_force = 0.0;        // N, over the steps and contact pairs
   double max_contact_force_time = -1.0;  // s, the end of its step (-1: no contact)
   // The first contact (any pair; a body bouncing or a chain of balls has several): the
-  // midpoints of the steps in which it began and ended (-1: none, or not ended).
+  // midpoints of the steps in which it began and ended (-1: none, or not ended). A first
+  // contact whose force stays below 1 % of a later one's is a touch on the way in: the
+  // later contact continues it (runtime/simulation/simulation.cc trackFirstContact).
   double contact_begin = -1.0;  // s
   double contact_end = -1.0;    // s
+  double first_contact_peak = 0.0;  // N, the largest force of the first contact so far
+  double contact_run_peak = 0.0;    // N, that of the latest run of steps in contact
   long contact_events = 0;      // contacts begun: steps in contact after steps without
   SolverCounts solver;
   PhaseFigures before, during, after;  // before, during and after contact (Table 3)
