@@ -31,6 +31,7 @@ QuasiStaticModes QuasiStaticModes::without(const std::vector<int>& dynamic) cons
   QuasiStaticModes m;
   m.cutoff_hz = cutoff_hz;
   m.tau = tau;
+  m.held_by_joints = held_by_joints;
   std::vector<int> keep;
   for (int s = 0; s < size(); ++s)
     if (std::find(dynamic.begin(), dynamic.end(), index[s]) == dynamic.end()) keep.push_back(s);
@@ -41,6 +42,7 @@ QuasiStaticModes QuasiStaticModes::without(const std::vector<int>& dynamic) cons
     m.stiffness(j) = stiffness(keep[j]);
     m.reach(j) = reach(keep[j]);
   }
+  m.held_by_joints += size() - m.size();
   return m;
 }
 

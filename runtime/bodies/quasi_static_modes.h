@@ -46,6 +46,7 @@ struct QuasiStaticModes {
   std::vector<int> index;     // elastic coordinates (0 .. nq-1) treated quasi-statically
   Eigen::VectorXd stiffness;  // their k_i (1/s^2)
   Eigen::VectorXd reach;      // their max |Phi_i| over the body's points (m per unit q_i)
+  int held_by_joints = 0;     // coordinates above the cutoff that joints keep dynamic (without)
 
   bool empty() const { return index.empty(); }
   int size() const { return static_cast<int>(index.size()); }

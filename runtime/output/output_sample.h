@@ -25,6 +25,7 @@ struct BodyLayout {
   int nq = 0;                                  // elastic coordinates (0: rigid or frozen)
   int quasi_static_modes = 0;                  // of them quasi-static
   double quasi_static_cutoff_hz = 0.0;         // Hz, 0 if none
+  int quasi_static_held_by_joints = 0;         // above the cutoff, kept dynamic by joints
 };
 
 // A contact pair, a joint or a force element between two bodies (or a body and the ground).

@@ -37,10 +37,12 @@ void ResultRows::createBodies(const OutputLayout& layout) {
     h5::writeAttribute(c, g.id(), "model", std::string(toString(body.sid->model)));
     h5::writeAttribute(c, g.id(), "sid_name", body.sid->name);
     // Quasi-static coordinates (runtime/bodies/quasi_static_modes.h): their count and
-    // cutoff (Hz, 0 if none); their qdot columns are zero.
+    // cutoff (Hz, 0 if none), and those above it that joints keep dynamic; their qdot
+    // columns are zero.
     h5::writeAttribute(c, g.id(), "quasi_static_modes", body.quasi_static_modes);
     h5::writeAttribute(c, g.id(), "quasi_static_cutoff_hz", body.quasi_static_cutoff_hz);
     h5::writeAttribute(c, g.id(), "quasi_static_cutoff_unit", std::string("Hz"));
+    h5::writeAttribute(c, g.id(), "quasi_static_held_by_joints", body.quasi_static_held_by_joints);
     BodySeries s;
     s.position = &file_.series(g.id(), "position", 3, "m", "reference point r_R, inertial");
     s.orientation = &file_.series(g.id(), "orientation", 4, "1",

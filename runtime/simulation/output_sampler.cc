@@ -91,7 +91,8 @@ OutputLayout outputLayout(const MultibodySystem& system) {
     const BodyModel& body = system.body(b);
     const QuasiStaticModes& qs = body.quasiStatic();
     layout.bodies.push_back(
-        {body.name(), body.sharedSid(), body.nq(), qs.size(), qs.empty() ? 0.0 : qs.cutoff_hz});
+        {body.name(), body.sharedSid(), body.nq(), qs.size(), qs.empty() ? 0.0 : qs.cutoff_hz,
+         qs.held_by_joints});
   }
   for (int c = 0; c < system.numContacts(); ++c) {
     const SurfaceContact& pair = system.contact(c);
