@@ -60,6 +60,7 @@ class Joint {
   const std::string& name() const { return name_; }
   JointType type() const { return type_; }
   const JointEnd& end(int i) const { return i == 0 ? a_ : b_; }
+  JointEnd& end(int i) { return i == 0 ? a_ : b_; }
   int numEquations() const;
   // Sets the joint axes from its inertial axes E (columns e1 e2 e3, orthonormal) and the
   // rotation matrices of the two bodies at that moment (the ground's is ignored).

@@ -149,39 +149,12 @@ BodyMarkers collectMarkers(const YamlDocument& doc, const MultibodySystem& sys) 
   return out;
 }
 
-namespace {
-
-// The quasi-static coordinates that carry a joint marker's flexibility keep their inertia
-// (jointHeldCoordinates, runtime/bodies/body_marker.h), for all joints before any is built:
-// each joint then detaches the same set (schemas/multibody.md "Joints and quasi-static
-// coordinates").
-void holdJointedCoordinates(const YamlDocument& doc, const std::map<std::string, int>& index,
-                            const BodyMarkers& markers, const std::vector<InitialPose>& pose,
-                            MultibodySystem& sys) {
-  const YAML::Node joints = doc.root["joints"];
-  std::set<std::string> names;
-  for (std::size_t j = 0; joints && j < joints.size(); ++j) {
-    const YAML::Node J = joints[j];
-    const std::string k = Str() << "joints[" << j << "]";
-    const Connection c = readConnection(doc, J, k, "joint", j, names, index, markers, sys, pose);
-    const bool rotations = getKind<JointType>(doc, J["type"], k + ".type") != JointType::kSpherical;
-    for (const MarkerEnd* e : {&c.a, &c.b}) {
-      if (e->body < 0) continue;
-      BodyModel& body = sys.body(e->body);
-      body.keepDynamic(jointHeldCoordinates(e->marker, body.stiffnessDiagonal(),
-                                            body.quasiStatic().index, rotations));
-    }
-  }
-}
-
-}  // namespace
-
 std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::string, int>& index,
                               const BodyMarkers& markers, const std::vector<InitialPose>& pose,
                               MultibodySystem& sys) {
   std::vector<double> angles;
   const YAML::Node joints = doc.root["joints"];
-  holdJointedCoordinates(doc, index, markers, pose, sys);
+  const int first = sys.numJoints();
   std::set<std::string> names;
   for (std::size_t j = 0; joints && j < joints.size(); ++j) {
     const YAML::Node J = joints[j];
@@ -192,8 +165,16 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
     const char* typeName = jointTypeName(type);
     MarkerEnd& a = c.a;
     MarkerEnd& b = c.b;
-    for (MarkerEnd* e : {&a, &b})
-      if (e->body >= 0) detachQuasiStatic(*e, sys.body(e->body).quasiStatic().index);
+    // The quasi-static coordinates that carry the markers' flexibility keep their inertia
+    // (jointHeldCoordinates, runtime/bodies/body_marker.h; schemas/multibody.md "Joints and
+    // quasi-static coordinates").
+    for (const MarkerEnd* e : {&a, &b}) {
+      if (e->body < 0) continue;
+      BodyModel& body = sys.body(e->body);
+      body.keepDynamic(jointHeldCoordinates(e->marker, body.stiffnessDiagonal(),
+                                            body.quasiStatic().index,
+                                            type != JointType::kSpherical));
+    }
     const bool needsAxis = type == JointType::kRevolute || type == JointType::kPrismatic;
     if (needsAxis && !J["axis"])
       throw inputError(doc, J, k, Str() << "a " << typeName << " joint needs 'axis'");
@@ -225,6 +206,12 @@ std::vector<double> addJoints(const YamlDocument& doc, const std::map<std::strin
     joint->setAxes(E, Aa, Ab);
     sys.addJoint(std::move(joint));
   }
+  // Once every joint has held its coordinates, each detaches the rest from its markers.
+  for (int j = first; j < sys.numJoints(); ++j)
+    for (int i = 0; i < 2; ++i) {
+      JointEnd& e = sys.joint(j).end(i);
+      if (e.body >= 0) detachQuasiStatic(e, sys.body(e.body).quasiStatic().index);
+    }
   return angles;
 }
 

@@ -27,7 +27,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks  # noqa: E402
+from result_checks import Checks, quasi_static_split  # noqa: E402
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 source, out = pathlib.Path(source), pathlib.Path(out)
@@ -50,13 +50,10 @@ with h5py.File(out / "pendulum_flexible.h5", "r") as f, \
     # The rod's coordinates above the cutoff, counted from its SID's frequencies, are the
     # quasi-static ones and those its joints hold (schemas/multibody.md "Joints and
     # quasi-static coordinates"): measured 78 + 18 = 96.
-    rod = f["bodies/rod"].attrs
-    with h5py.File(out / "rod.sid.h5", "r") as s:
-        above = int(np.count_nonzero(s["sid/frequencies_hz"][:] >= float(rod["quasi_static_cutoff_hz"])))
-    qs, held = int(rod["quasi_static_modes"]), int(rod["quasi_static_held_by_joints"])
+    qs, held, above, cutoff = quasi_static_split(f, "rod", out / "rod.sid.h5")
     check(held > 0 and qs > 0 and qs + held == above,
           f"rod: {qs} quasi-static + {held} held by its joints = {above} coordinates above "
-          f"{float(rod['quasi_static_cutoff_hz']):.0f} Hz")
+          f"{cutoff:.0f} Hz")
     worst = max(float(f[f"joints/{j}/violation"][:].max()) for j in f["joints"])
     check(worst <= 1e-10, f"largest joint violation {worst:.3g} m <= 1e-10 m")
     res, force = float(f.attrs["static_preload_residual"]), float(

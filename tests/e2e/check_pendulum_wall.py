@@ -41,7 +41,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks, contact_runs, rotation  # noqa: E402
+from result_checks import Checks, contact_runs, quasi_static_split, rotation  # noqa: E402
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 source, out = pathlib.Path(source), pathlib.Path(out)
@@ -69,13 +69,9 @@ print(f"Hertz with m_eff = {m_eff / m:.4f} m: {F_hertz:.3f} N, {T_hertz * 1e6:.3
 
 with h5py.File(result, "r") as f:
     check.status_completed(f)
-    nqs = int(f["bodies/sphere"].attrs["quasi_static_modes"])
     # With those the pivot holds dynamic (measured 1), they are the coordinates above the
     # cutoff, counted from the SID's frequencies.
-    held = int(f["bodies/sphere"].attrs["quasi_static_held_by_joints"])
-    cutoff = float(f["bodies/sphere"].attrs["quasi_static_cutoff_hz"])
-    with h5py.File(sid, "r") as s:
-        above = int(np.count_nonzero(s["sid/frequencies_hz"][:] >= cutoff))
+    nqs, held, above, cutoff = quasi_static_split(f, "sphere", sid)
     check(nqs > 0 and nqs + held == above,
           f"{nqs} quasi-static coordinates on the jointed sphere + {held} held by the pivot = "
           f"{above} above {cutoff:.0f} Hz")

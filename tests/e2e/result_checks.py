@@ -63,6 +63,18 @@ def contact_runs(F):
     return list(zip(starts, ends))
 
 
+def quasi_static_split(f, body, sid_path):
+    """A jointed body's coordinates above its quasi-static cutoff: (quasi-static, held
+    dynamic by its joints, the SID's modes at or above the cutoff, the cutoff in Hz), from
+    the result's /bodies/<body> attributes and the SID's frequencies; the first two add up
+    to the third (schemas/multibody.md "Joints and quasi-static coordinates")."""
+    a = f[f"bodies/{body}"].attrs
+    cutoff = float(a["quasi_static_cutoff_hz"])
+    with h5py.File(sid_path, "r") as s:
+        above = int(np.count_nonzero(s["sid/frequencies_hz"][:] >= cutoff))
+    return int(a["quasi_static_modes"]), int(a["quasi_static_held_by_joints"]), above, cutoff
+
+
 def sphere_on_rod_figures(sphere_sid, rod_sid, rod_radius):
     """What the one-dimensional sphere-on-rod models need, read from the SIDs: the sphere's
     mass m and radius R, the rod's mass M, density rho, E and nu, its bar speed
