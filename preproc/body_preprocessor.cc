@@ -330,6 +330,15 @@ void BodyPreprocessor::sampleVisualisation() {
   sid_.geometry.radius = config_.geometry.radius;
   sid_.geometry.length = config_.geometry.length;
   sid_.geometry.centre = -origin_;  // the geometries are built around the origin
+  if (config_.design) {
+    const ImpactDesign& d = *config_.design;
+    sid_.design.present = true;
+    sid_.design.contact_radius = d.contact_radius;
+    sid_.design.elements_per_contact_radius = d.elements_per_contact_radius;
+    sid_.design.finest_element = std::max(d.finest_arc, d.finest_depth);
+    sid_.design.approach_speed = d.approach_speed;
+    sid_.design.max_pressure = d.max_pressure;
+  }
   const IsotropicMaterial& material = config_.material;
   const Eigen::MatrixXd& P = space_->controlPoints();
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();

@@ -52,6 +52,11 @@ void printGeometry(const BodyConfig& c, const NurbsPatch& patch, int verbosity) 
   }
 }
 
+void printDesign(const ImpactDesign& design) {
+  std::printf("  design (derived from the body file's 'design' block):\n");
+  for (const std::string& line : design.reasons) std::printf("    %s\n", line.c_str());
+}
+
 void printHierarchy(const BodyConfig& c, const HierarchicalSpace& space) {
   const int s = space.spaceDim();
   if (c.global_reference) {
@@ -137,6 +142,12 @@ void printPreprocessSummary(const BodyConfig& config, const FlexibleBodySid& sid
                             double write_s, double total_s) {
   std::printf("igaprep %s: %s -> %s\n", kVersion, config.source.path.c_str(), output.c_str());
   std::printf("  %-28s %s, %s frame\n", "model", toString(sid.model), toString(sid.frame));
+  if (config.design) {
+    std::printf("  %-28s a = %.6g m, %d levels, finest %.4g m (a / %.4g)\n", "design",
+                config.design->contact_radius, config.hierarchy.levels,
+                sid.design.finest_element,
+                config.design->contact_radius / sid.design.finest_element);
+  }
   std::printf("  %-28s %d (%d control points, %d tied, %d fixed on the axis)\n", "ndof",
               summary.ndof, summary.num_control_points, summary.tied_points, summary.fixed_dofs);
   std::printf("  %-28s %d (%d DOFs)\n", "interface control points",

@@ -18,6 +18,8 @@ namespace ffriga {
 
 void printGeometry(const BodyConfig& config, const NurbsPatch& refined, int verbosity);
 void printHierarchy(const BodyConfig& config, const HierarchicalSpace& space);
+// A designed body's design: each derived number with its reason.
+void printDesign(const ImpactDesign& design);
 void printSidSummary(const FlexibleBodySid& sid, const std::string& path);
 // After writing `output`: model, DOFs, interface, nq, frequencies, mass, the stages' times
 // (write_s: writing the file; total_s: the whole run so far).

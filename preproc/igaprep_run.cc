@@ -50,6 +50,7 @@ int IgaprepRun::run() {
   if (config_.verbosity > 1) logSizeEstimate(config, limit);
   if (config_.output.empty()) {
     printGeometry(config, refinedPatch(config), config_.verbosity);
+    if (config_.verbosity > 0 && config.design) printDesign(*config.design);
     if (config_.verbosity > 0) printHierarchy(config, bodySpace(config));
     return 0;
   }

@@ -84,6 +84,17 @@ struct StressLine {
   SampledModes samples;      // points evenly spaced from `from` to `to`
 };
 
+// The design a designed body was built from (body file key `design`, schemas/body_design.md;
+// SID group /design). Hand-made bodies have none (present = false).
+struct SidDesign {
+  bool present = false;
+  double contact_radius = 0.0;               // a, m: what the model resolves
+  double elements_per_contact_radius = 0.0;  // N: finest elements at most a / N
+  double finest_element = 0.0;               // m: the finest span at the contact point
+  double approach_speed = 0.0;               // m/s of the designed impact; 0: a was given
+  double max_pressure = 0.0;                 // Pa, Hertz's p0 of that impact; 0: a was given
+};
+
 struct FlexibleBodySid {
   // Identity and provenance.
   std::string name;
@@ -149,6 +160,7 @@ struct FlexibleBodySid {
 
   IsotropicMaterial material;  // the body file's, for stresses and Hertz's reference
   SidGeometry geometry;
+  SidDesign design;
   VisualisationMesh mesh;
   std::vector<StressLine> stress_lines;
 

@@ -171,6 +171,14 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
   h5::writeScalar(c, g, "radius", sid.geometry.radius, "m");
   h5::writeScalar(c, g, "length", sid.geometry.length, "m");
   h5::writeVector(c, g, "centre", sid.geometry.centre, "m");
+  if (sid.design.present) {
+    Handle d = h5::createGroup(c, file, "design");
+    h5::writeScalar(c, d, "contact_radius", sid.design.contact_radius, "m");
+    h5::writeScalar(c, d, "elements_per_contact_radius", sid.design.elements_per_contact_radius, "1");
+    h5::writeScalar(c, d, "finest_element", sid.design.finest_element, "m");
+    h5::writeScalar(c, d, "approach_speed", sid.design.approach_speed, "m/s");
+    h5::writeScalar(c, d, "max_pressure", sid.design.max_pressure, "Pa");
+  }
   if (!sid.mesh.empty()) {
     Handle v = h5::createGroup(c, file, "visualisation");
     h5::writeAttribute(c, v, "subdivisions", sid.mesh.subdivisions);
@@ -199,6 +207,16 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
   const Eigen::VectorXd centre = finiteVector(c, g, "/geometry", "centre");
   if (centre.size() != 3) c.fail("/geometry/centre must have 3 components");
   sid->geometry.centre = centre;
+  if (h5::exists(file, "design")) {
+    Handle d = h5::openGroup(c, file, "design");
+    sid->design.present = true;
+    sid->design.contact_radius = finiteScalar(c, d, "/design", "contact_radius");
+    sid->design.elements_per_contact_radius =
+        finiteScalar(c, d, "/design", "elements_per_contact_radius");
+    sid->design.finest_element = finiteScalar(c, d, "/design", "finest_element");
+    sid->design.approach_speed = finiteScalar(c, d, "/design", "approach_speed");
+    sid->design.max_pressure = finiteScalar(c, d, "/design", "max_pressure");
+  }
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
     Handle v = h5::openGroup(c, file, "visualisation");
     sid->mesh.subdivisions = h5::readIntAttribute(c, v, "subdivisions");

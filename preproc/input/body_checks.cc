@@ -106,17 +106,17 @@ void checkHierarchy(BodyConfig& c, const NurbsPatch& patch) {
 // them.
 void checkContact(const YamlDocument& doc, const ContactConfig& c, const NurbsPatch& patch) {
   const YAML::Node node = contactNode(doc, c);
-  const std::string face = getString(doc, node["face"], c.key + ".face");
+  const std::string face = faceName(c.direction, c.upper);
   const std::string faceWhy = degenerateFace(patch, c.direction, c.upper);
   if (!faceWhy.empty()) {
     throw inputError(
-        doc, node["face"], c.key + ".face",
+        doc, c.designed ? node : node["face"], c.key + ".face",
         Str() << "face '" << face << "' is degenerate (" << faceWhy << "); " << kDegenerateRule);
   }
   int s = 0;
   for (int a = 0; a < patch.paramDim(); ++a) {
     if (a == c.direction) continue;
-    const YAML::Node region = node["region"][s];
+    const YAML::Node region = c.designed ? node : node["region"][s];
     const std::string key = Str() << c.key << ".region[" << s << "]";
     const double lo = c.bounds[s][0], hi = c.bounds[s][1];
     const double u0 = patch.knots(a).front(), u1 = patch.knots(a).back();
@@ -152,7 +152,8 @@ void checkContactOverlaps(const YamlDocument& doc, const std::vector<ContactConf
       for (std::size_t s = 0; s < a.bounds.size(); ++s)
         overlap = overlap && a.bounds[s][0] < b.bounds[s][1] && b.bounds[s][0] < a.bounds[s][1];
       if (!overlap) continue;
-      throw inputError(doc, contactNode(doc, b)["region"], b.key + ".region",
+      const YAML::Node node = contactNode(doc, b);
+      throw inputError(doc, b.designed ? node : node["region"], b.key + ".region",
                        Str() << "the region overlaps " << a.key << " ('" << a.name << "') on face "
                              << faceName(a.direction, a.upper)
                              << ": they would share interface control points and collocation "

@@ -327,6 +327,89 @@ void checkModel(const YamlDocument& doc, const BodyConfig& c) {
   }
 }
 
+// Reads `design` (preproc/design/impact_design.h) and derives the model from it: the
+// refinement, the hierarchy and the contact region, which the file must then not give.
+std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig& c) {
+  const YAML::Node node = doc.root["design"];
+  if (!node) return std::nullopt;
+  for (const char* key : {"refinement", "hierarchy", "contact", "contacts"}) {
+    if (doc.root[key]) {
+      throw inputError(doc, doc.root[key], key,
+                       Str() << "a designed body (key 'design') derives '" << key
+                             << "'; give either the design or the hand-made model, not both");
+    }
+  }
+  if (c.geometry.kind != GeometryKind::kHalfDisk) {
+    throw inputError(doc, node, "design",
+                     Str() << "the design rule covers geometry 'half_disk' (an axisymmetric "
+                           << "sphere, contact at its pole) so far; give refinement, hierarchy "
+                           << "and contact by hand for '" << toString(c.geometry.kind) << "'");
+  }
+  const YAML::Node impact = node["impact"];
+  if (bool(impact) == bool(node["contact_radius"])) {
+    throw inputError(doc, node, "design",
+                     "give either 'impact' (what hits the body) or 'contact_radius' (the "
+                     "largest contact radius to resolve)");
+  }
+  DesignRequest q;
+  q.elements_per_contact_radius =
+      getDouble(doc, node["elements_per_contact_radius"], "design.elements_per_contact_radius");
+  q.from_impact = bool(impact);
+  if (!q.from_impact) {
+    q.contact_radius = getDouble(doc, node["contact_radius"], "design.contact_radius");
+  } else {
+    q.approach_speed = getDouble(doc, impact["approach_speed"], "design.impact.approach_speed");
+    const YAML::Node partner = impact["partner"];
+    if (partner.IsMap()) {
+      const std::string key = "design.impact.partner";
+      q.partner = DesignRequest::Partner::kSphere;
+      q.partner_sphere.radius = getDouble(doc, partner["radius"], key + ".radius");
+      q.partner_sphere.youngs_modulus =
+          getDouble(doc, partner["youngs_modulus"], key + ".youngs_modulus");
+      q.partner_sphere.poisson_ratio =
+          getDouble(doc, partner["poisson_ratio"], key + ".poisson_ratio");
+      q.partner_sphere.mass = sphereMass(q.partner_sphere.radius,
+                                         getDouble(doc, partner["density"], key + ".density"));
+    } else {
+      q.partner = getString(doc, partner, "design.impact.partner") == "plane"
+                      ? DesignRequest::Partner::kPlane
+                      : DesignRequest::Partner::kSame;
+    }
+  }
+  try {
+    return designHalfDiskImpact(c.geometry.radius, c.material,
+                                sphereMass(c.geometry.radius, c.material.density), q);
+  } catch (const std::invalid_argument& e) {
+    throw inputError(doc, node, "design", e.what());
+  }
+}
+
+// The designed model into the config: what the hand-made keys would have given.
+void applyDesign(const ImpactDesign& d, BodyConfig& c) {
+  c.refinement = d.refinement;
+  c.hierarchy.levels = d.hierarchy.levels;
+  c.hierarchy.boxes = d.hierarchy.boxes;
+  ContactConfig contact;
+  contact.key = "design";
+  contact.designed = true;
+  contact.direction = 1;  // face eta_max: the upper arc
+  contact.upper = true;
+  contact.bounds = d.region;
+  c.contacts = {contact};
+}
+
+// The designed stress line 'axis', unless the file names one so.
+void addDesignedStressLine(const ImpactDesign& d, VisualisationConfig& v) {
+  for (const StressLineConfig& line : v.stress_lines)
+    if (line.name == "axis") return;
+  StressLineConfig line;
+  line.name = "axis";
+  line.from = Eigen::Vector2d(d.stress_from[0], d.stress_from[1]);
+  line.to = Eigen::Vector2d(d.stress_to[0], d.stress_to[1]);
+  line.points = d.stress_points;
+  v.stress_lines.push_back(line);
+}
+
 }  // namespace
 
 double ReductionConfig::dampingRatio(double f_hz, double f1_hz) const {
@@ -361,9 +444,12 @@ BodyConfig readBodyConfig(YamlDocument doc) {
   parseInsert(doc, r ? r["insert"] : YAML::Node(), d, c);
   readHierarchy(doc, root["hierarchy"], d, c);
   c.contacts = readContacts(doc, d);
+  c.design = readDesign(doc, c);
+  if (c.design) applyDesign(*c.design, c);
   readMarkers(doc, root["markers"], d, &c.markers);
   parseReduction(doc, root["reduction"], !c.contacts.empty(), c.markers, &c.reduction);
   c.visualisation = readVisualisation(doc, root["visualisation"], d);
+  if (c.design) addDesignedStressLine(*c.design, c.visualisation);
   c.source = std::move(doc);
   return c;
 }
@@ -385,6 +471,7 @@ const char* toString(GeometryKind geometry) { return spell(kGeometryKinds, geome
 
 YAML::Node contactNode(const YamlDocument& doc, const ContactConfig& contact) {
   const YAML::Node& root = doc.root;  // const: looking up creates no entries
+  if (contact.designed) return root["design"];
   return contact.item < 0 ? root["contact"] : root["contacts"][contact.item];
 }
 

@@ -14,6 +14,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -23,6 +24,7 @@
 #include "common/sid/body_kinds.h"
 #include "common/splines/hierarchical_space.h"
 #include "common/splines/nurbs_patch.h"
+#include "preproc/design/impact_design.h"
 #include "preproc/geometry/body_geometry.h"
 #include "preproc/input/visualisation_config.h"
 
@@ -42,6 +44,7 @@ struct ContactConfig {
   bool upper = true;             // face at the upper end of the direction
   std::vector<std::array<double, 2>> bounds;  // per remaining direction, increasing order
   bool gauss = false;  // collocation: Gauss-Legendre points (else the paper's Botella points)
+  bool designed = false;  // derived by the `design` block (errors then name that key)
 };
 
 struct MarkerConfig {
@@ -91,6 +94,9 @@ struct BodyConfig {
   std::vector<MarkerConfig> markers;
   ReductionConfig reduction;
   VisualisationConfig visualisation;
+  // The design block's result (key `design`): refinement, hierarchy, the contact region and
+  // the stress line 'axis' above were derived by preproc/design/impact_design.h.
+  std::optional<ImpactDesign> design;
 };
 
 // Reads and checks a body file (both phases of the header comment). Throws InputError

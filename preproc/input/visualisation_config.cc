@@ -71,10 +71,15 @@ void invertStressLines(const YamlDocument& doc, const NurbsPatch& geometry,
   if (v.stress_lines.empty()) return;
   const Eigen::MatrixXd& P = geometry.points();
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
-  const YAML::Node lines = doc.root["visualisation"]["stress_lines"];
+  const YAML::Node& root = doc.root;  // const: looking up creates no entries
+  const YAML::Node lines = root["visualisation"] ? root["visualisation"]["stress_lines"] : YAML::Node();
+  const std::size_t given = lines ? lines.size() : 0;
   for (std::size_t i = 0; i < v.stress_lines.size(); ++i) {
-    const std::string key = Str() << "visualisation.stress_lines[" << i << "]";
-    invertLine(doc, lines[i], key, geometry, size, &v.stress_lines[i]);
+    // Lines after the given ones were derived by the design block (body_config.h).
+    const bool derived = i >= given;
+    const std::string key =
+        derived ? std::string("design") : Str() << "visualisation.stress_lines[" << i << "]";
+    invertLine(doc, derived ? root["design"] : lines[i], key, geometry, size, &v.stress_lines[i]);
   }
 }
 

@@ -1,0 +1,206 @@
+#!/usr/bin/env python3
+"""Design study of issue 26 (schemas/body_design.md): designed axisymmetric spheres against Hertz.
+
+For every case of a matrix of impacts (radius, Young's modulus, Poisson's ratio, density,
+approach speed, radius ratio), this script writes a body file with only a `design` block
+(no hand-made refinement, hierarchy or contact region), builds it with igaprep, runs the
+head-on impact of two such spheres (or of the sphere and its partner) with
+`penalty_factor: auto` in ffrsim, and reads from the files: the force peak and contact
+duration against Hertz (result attributes), ndof and nq (SID attributes), the wall times,
+and the lowest elastic frequency f1 of the smaller body, from which the quasi-static figure
+T f1 (Hertz's contact time in periods of that mode) says how far Hertz's quasi-static theory
+can be trusted: the spheres' inertia makes the force peak exceed Hertz's by about
+70 / (T f1)^2 per cent (fitted to this study; the paper's Sect. 5 impact, T f1 = 11.2, has
+an independent elastodynamic reference +0.5 ... +0.7 % above Hertz), so cases with
+T f1 < 12 (an excess above 0.5 %) are also compared with a designed model twice as fine
+(N = 24 instead of the default 12, same impact): the discretisation error.
+
+usage: design2d.py BUILD_DIR OUT_DIR [--quick] [--json FILE] [--png FILE]
+"""
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+import h5py
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+QUASI_STATIC_LIMIT = 12.0  # T f1 below which Hertz's quasi-static theory is doubtful here
+
+
+def body_yaml(name, R, E, nu, rho, v, partner, N):
+    partner_text = partner if isinstance(partner, str) else (
+        "{radius: %r, youngs_modulus: %r, poisson_ratio: %r, density: %r}" % partner)
+    return f"""name: {name}
+model: axisymmetric
+material: {{youngs_modulus: {E!r}, poisson_ratio: {nu!r}, density: {rho!r}}}
+geometry: {{type: half_disk, radius: {R!r}}}
+design:
+  impact: {{partner: {partner_text}, approach_speed: {v!r}}}
+  elements_per_contact_radius: {N!r}
+"""
+
+
+def hertz_time(R1, R2, E1, nu1, E2, nu2, m1, m2, v):
+    Es = 1 / ((1 - nu1**2) / E1 + (1 - nu2**2) / E2)
+    Rs = R1 * R2 / (R1 + R2)
+    ms = m1 * m2 / (m1 + m2)
+    K = 4 / 3 * Es * math.sqrt(Rs)
+    d = (5 * ms * v * v / (4 * K)) ** 0.4
+    return 2.94352 * d / v
+
+
+def scene_yaml(name, sid_a, sid_b, R1, R2, v, T):
+    return f"""name: {name}
+bodies:
+  - {{name: lower, sid: {sid_a}, position: [0, 0, 0], velocity: [0, {v / 2!r}, 0]}}
+  - {{name: upper, sid: {sid_b}, position: [0, {R1 + R2!r}, 0], orientation: [0, 1, 0, 0], velocity: [0, {-v / 2!r}, 0]}}
+contacts:
+  - {{name: impact, bodies: [lower, upper], penalty_factor: auto}}
+integrator:
+  end_time: {1.25 * T:.6g}
+  output_interval: {T / 1000:.6g}
+  rtol: 1.0e-6
+  atol_position: {1e-12 * R1 / 0.01:.4g}
+  atol_velocity: {5e-8 * v:.4g}
+"""
+
+
+def run_case(build, out, case, N):
+    """One impact: returns the figures as a dict."""
+    R, E, nu, rho, v, ratio = (case[k] for k in ("R", "E", "nu", "rho", "v", "ratio"))
+    tag = f"{case['name']}_N{N:g}"
+    d = os.path.join(out, tag)
+    os.makedirs(d, exist_ok=True)
+    R2 = R * ratio
+    partner = "same" if ratio == 1 else (R2, E, nu, rho)
+    bodies = [("a", R, "same" if ratio == 1 else (R2, E, nu, rho))]
+    if ratio != 1:
+        bodies.append(("b", R2, (R, E, nu, rho)))
+    t_pre = 0.0
+    for b, radius, p in bodies:
+        path = os.path.join(d, b + ".yaml")
+        with open(path, "w") as f:
+            f.write(body_yaml(tag + b, radius, E, nu, rho, v, p, N))
+        t0 = time.perf_counter()
+        subprocess.run([os.path.join(build, "bin", "igaprep"), "-q", path, "-o",
+                        os.path.join(d, b + ".sid.h5")], check=True)
+        t_pre = max(t_pre, time.perf_counter() - t0)
+    m1 = rho * 4 / 3 * math.pi * R**3
+    m2 = rho * 4 / 3 * math.pi * R2**3
+    T = hertz_time(R, R2, E, nu, E, nu, m1, m2, v)
+    sid_b = "b.sid.h5" if ratio != 1 else "a.sid.h5"
+    with open(os.path.join(d, "scene.yaml"), "w") as f:
+        f.write(scene_yaml(tag, "a.sid.h5", sid_b, R, R2, v, T))
+    t0 = time.perf_counter()
+    subprocess.run([os.path.join(build, "bin", "ffrsim"), "-q", os.path.join(d, "scene.yaml"),
+                    "-o", os.path.join(d, "result.h5")], check=True)
+    t_sim = time.perf_counter() - t0
+    row = dict(case=case["name"], N=N, igaprep_s=t_pre, ffrsim_s=t_sim)
+    with h5py.File(os.path.join(d, "result.h5"), "r") as f:
+        a = f.attrs
+        row.update(force=float(a["max_contact_force_N"]), hertz_force=float(a["hertz_max_force_N"]),
+                   force_vs_hertz=float(a["force_vs_hertz"]),
+                   duration=float(a["contact_duration_s"]),
+                   duration_vs_hertz=float(a["duration_vs_hertz"]), steps=int(a["solver_steps"]),
+                   penalty=float(f["contacts/impact"].attrs["penalty_factor"]))
+    f1 = 0.0
+    for b, _, _ in bodies:
+        with h5py.File(os.path.join(d, b + ".sid.h5"), "r") as s:
+            row.setdefault("ndof", int(s.attrs["ndof"]))
+            row.setdefault("nq", int(s.attrs["nq"]))
+            row.setdefault("contact_radius", float(s["design/contact_radius"][()]))
+            f1 = max(f1, float(s["sid/frequencies_hz"][:].min()))
+    row["T_f1"] = T * f1
+    return row
+
+
+def cases(quick):
+    """The matrix: around the paper's impact, each quantity varied over the issue's range,
+    and combinations of them."""
+    base = dict(R=0.01, E=2.11e11, nu=0.3, rho=7850.0, v=0.2, ratio=1)
+    out = [dict(base, name="paper")]
+    if quick:
+        return out
+    for R in (0.001, 0.003, 0.03, 0.1):
+        out.append(dict(base, name=f"R{R:g}", R=R))
+    for E in (2e10, 7e10, 4e11):
+        out.append(dict(base, name=f"E{E:g}", E=E))
+    for nu in (0.2, 0.25, 0.35):
+        out.append(dict(base, name=f"nu{nu:g}", nu=nu))
+    for rho in (1800.0, 2700.0, 4500.0, 8000.0):
+        out.append(dict(base, name=f"rho{rho:g}", rho=rho))
+    for v in (0.01, 0.05, 1.0, 5.0, 20.0):
+        out.append(dict(base, name=f"v{v:g}", v=v))
+    for ratio in (2, 5):
+        out.append(dict(base, name=f"ratio{ratio}", ratio=ratio))
+    materials = [("alu", 7.0e10, 0.33, 2700.0), ("glass", 6.3e10, 0.22, 2500.0),
+                 ("carbide", 4.0e11, 0.24, 8000.0), ("polymer", 2.0e10, 0.35, 1800.0)]
+    for mname, E, nu, rho in materials:
+        for R, v in ((0.001, 0.5), (0.005, 1.0), (0.02, 0.05), (0.05, 2.0)):
+            out.append(dict(name=f"{mname}_R{R:g}_v{v:g}", R=R, E=E, nu=nu, rho=rho, v=v, ratio=1))
+        out.append(dict(name=f"{mname}_ratio3", R=0.005, E=E, nu=nu, rho=rho, v=0.3, ratio=3))
+    return out
+
+
+def main():
+    build, out = sys.argv[1], sys.argv[2]
+    quick = "--quick" in sys.argv
+    json_path = sys.argv[sys.argv.index("--json") + 1] if "--json" in sys.argv else None
+    png_path = sys.argv[sys.argv.index("--png") + 1] if "--png" in sys.argv else None
+    rows = []
+    print(f"{'case':>22} {'a um':>8} {'T f1':>6} {'70/Tf1^2':>8} {'ndof':>6} {'nq':>4} "
+          f"{'force':>8} {'dur':>8} {'N=24 vs N=12':>17} {'steps':>6} {'pre s':>6} {'sim s':>6}")
+    for case in cases(quick):
+        r = run_case(build, out, case, 12)
+        if r["T_f1"] < QUASI_STATIC_LIMIT:
+            fine = run_case(build, out, case, 24)
+            r["finer_force"] = fine["force"] / r["force"] - 1
+            r["finer_duration"] = fine["duration"] / r["duration"] - 1
+            finer = f"{100 * r['finer_force']:+7.3f} {100 * r['finer_duration']:+7.3f} %"
+        else:
+            finer = ""
+        rows.append(r)
+        print(f"{r['case']:>22} {1e6 * r['contact_radius']:8.1f} {r['T_f1']:6.1f} "
+              f"{70 / r['T_f1']**2:7.3f}% {r['ndof']:6d} "
+              f"{r['nq']:4d} {100 * r['force_vs_hertz']:+7.3f}% {100 * r['duration_vs_hertz']:+7.3f}% "
+              f"{finer:>17} {r['steps']:6d} {r['igaprep_s']:6.2f} {r['ffrsim_s']:6.2f}", flush=True)
+    trusted = [r for r in rows if r["T_f1"] >= QUASI_STATIC_LIMIT]
+    doubtful = [r for r in rows if r["T_f1"] < QUASI_STATIC_LIMIT]
+    print(f"{len(rows)} cases; {len(trusted)} with T f1 >= {QUASI_STATIC_LIMIT:g}: largest "
+          f"|force - Hertz| {100 * max(abs(r['force_vs_hertz']) for r in trusted):.3f} %, "
+          f"|duration - Hertz| {100 * max(abs(r['duration_vs_hertz']) for r in trusted):.3f} %"
+          if trusted else f"{len(rows)} cases, none with T f1 >= {QUASI_STATIC_LIMIT:g}")
+    if doubtful:
+        print(f"{len(doubtful)} with T f1 < {QUASI_STATIC_LIMIT:g}: largest |force(N=24) - "
+              f"force(N=12)| {100 * max(abs(r['finer_force']) for r in doubtful):.3f} %, "
+              f"duration {100 * max(abs(r['finer_duration']) for r in doubtful):.3f} %")
+    print(f"largest wall times: igaprep {max(r['igaprep_s'] for r in rows):.2f} s, "
+          f"ffrsim {max(r['ffrsim_s'] for r in rows):.2f} s; largest ndof "
+          f"{max(r['ndof'] for r in rows)}, nq {max(r['nq'] for r in rows)}")
+    if json_path:
+        with open(json_path, "w") as f:
+            json.dump(rows, f, indent=1)
+    if png_path:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(7, 4.5))
+        x = [r["T_f1"] for r in rows]
+        ax.semilogx(x, [100 * r["force_vs_hertz"] for r in rows], "o", label="force peak")
+        ax.semilogx(x, [100 * r["duration_vs_hertz"] for r in rows], "s", label="duration")
+        xs = sorted(x)
+        ax.semilogx(xs, [70 / t**2 for t in xs], "k--", lw=0.8, label="70 / (T f1)^2")
+        ax.axvline(QUASI_STATIC_LIMIT, color="grey", lw=0.8)
+        ax.axhspan(-1, 1, color="green", alpha=0.08)
+        ax.set_xlabel("Hertz contact time x lowest elastic frequency, T f1")
+        ax.set_ylabel("designed model against Hertz, %")
+        ax.legend()
+        fig.tight_layout()
+        fig.savefig(png_path, dpi=120)
+
+
+if __name__ == "__main__":
+    main()

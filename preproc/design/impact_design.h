@@ -1,0 +1,94 @@
+// A body designed from the impact it must resolve (body file key `design`, issue 26;
+// schemas/body_design.md): instead of hand-given refinement, hierarchy boxes and contact
+// region, the body file states where contact happens and what must be resolved there, and
+// the rule below derives the model. The same rule for every case, no per-case tables.
+//
+// What must be resolved: Hertz's contact radius a, from the impact (the partner's radius
+// and material, or the same body again, or a rigid plane, and the approach speed;
+// common/mechanics/hertz.h: a = sqrt(R* delta_max)) or given directly as the largest
+// contact radius expected.
+//
+// The rule, for the half-disk of paper Eq. (19) with contact at its pole (xi, eta) = (0, 1)
+// (arc length s = r theta along eta = 1, theta(xi) = pi/4 + 2 atan((2 xi - 1) tan(pi/8));
+// depth d = 2 r (1 - eta) along the axis xi = 0):
+//
+//   level 0   the paper's 400-element model (degrees 4 x 3, 16 x 25 spans): at the pole
+//             spans of sqrt(2) r / 16 along the arc and 2 r / 25 in depth;
+//   levels    the fewest halvings that bring both below a / N, N = elements per contact
+//             radius (default 12);
+//   boxes     box l (l = 1 .. L) reaches kRegionRadii a along the arc and kFinestDepthRadii
+//             a in depth, plus kLayerCells cells of level l - 1 beyond, each bound snapped
+//             outwards onto the level l - 1 grid, so that every level keeps a layer of its
+//             own cells around the finer one (the grading of paper Fig. 6);
+//   region    the contact region: kRegionRadii a of arc, on the finest grid;
+//   stress    a line along the axis under the contact point, kStressLineRadii a deep.
+//
+// Measured on the paper's Sect. 5 impact (a = 0.168 mm; schemas/body_design.md): finest
+// spans of a / 12.2 (N = 12, 6 halvings) and a / 24.3 (N = 16 or 24, 7 halvings) give force
+// peaks 0.035 % apart; boxes 0.5 a or 1 a deep, 2 or 4 layer cells, regions of 1.5 a to
+// 3 a change it by less than 0.002 %.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/mechanics/hertz.h"
+#include "common/mechanics/isotropic_material.h"
+#include "common/splines/hierarchical_space.h"
+#include "preproc/geometry/body_geometry.h"
+
+namespace ffriga {
+
+// The rule's constants (header comment).
+constexpr double kDefaultElementsPerContactRadius = 12.0;
+constexpr double kRegionRadii = 2.0;       // contact region and finest box: 2 a of arc
+constexpr double kFinestDepthRadii = 0.5;  // finest box depth: 0.5 a (Hertz's von Mises
+                                           // maximum lies at 0.48 a)
+constexpr int kLayerCells = 2;             // cells of the coarser level around each box
+constexpr double kStressLineRadii = 3.5;   // the axis line's depth, in a
+
+// The body file's `design` block as read.
+struct DesignRequest {
+  enum class Partner { kSame, kPlane, kSphere };
+  // Either the impact ...
+  bool from_impact = true;
+  Partner partner = Partner::kSame;
+  HertzSphere partner_sphere{};  // kSphere: radius, material and mass
+  double approach_speed = 0.0;   // m/s, relative normal speed at first touch
+  // ... or the largest contact radius directly (from_impact = false), m.
+  double contact_radius = 0.0;
+  double elements_per_contact_radius = kDefaultElementsPerContactRadius;
+};
+
+// What the rule derives, with the figures it derived them from.
+struct ImpactDesign {
+  // What must be resolved.
+  double contact_radius = 0.0;       // a, m
+  std::optional<HertzImpact> hertz;  // the impact's Hertz solution (from_impact only)
+  double max_pressure = 0.0;         // p0 at the force peak, Pa (from_impact only)
+  double approach_speed = 0.0;       // m/s (from_impact only)
+  double elements_per_contact_radius = 0.0;
+  // The model.
+  RefinementConfig refinement;
+  HierarchyOptions hierarchy;
+  std::vector<std::array<double, 2>> region;  // contact region on face eta_max, [xi]
+  double finest_arc = 0.0;                    // finest span at the pole along the arc, m
+  double finest_depth = 0.0;                  // and in depth, m
+  std::array<double, 2> stress_from{}, stress_to{};  // the axis line, geometry coordinates
+  int stress_points = 0;
+  // One line per derived number with its reason, for igaprep's printout.
+  std::vector<std::string> reasons;
+};
+
+// Hertz's contact radius and impact for a sphere of radius r and material `material` (mass
+// m) against the request's partner. Throws std::invalid_argument for what no rule can
+// design (a contact radius beyond the face).
+ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material,
+                                  double mass, const DesignRequest& request);
+
+// The mass of the full sphere of radius r, kg.
+double sphereMass(double radius, double density);
+
+}  // namespace ffriga
