@@ -15,7 +15,7 @@
 //   level 0   the paper's 400-element model (degrees 4 x 3, 16 x 25 spans): at the pole
 //             spans of sqrt(2) r / 16 along the arc and 2 r / 25 in depth;
 //   levels    the fewest halvings that bring both below a / N, N = elements per contact
-//             radius (default 12);
+//             radius (default 12 axisymmetric, 2 solid);
 //   boxes     box l (l = 1 .. L) reaches kRegionRadii a along the arc and kFinestDepthRadii
 //             a in depth, plus kLayerCells cells of level l - 1 beyond, each bound snapped
 //             outwards onto the level l - 1 grid, so that every level keeps a layer of its
@@ -34,6 +34,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "common/mechanics/hertz.h"
 #include "common/mechanics/isotropic_material.h"
 #include "common/splines/hierarchical_space.h"
@@ -42,7 +44,11 @@
 namespace ffriga {
 
 // The rule's constants (header comment).
+// Default accuracy level N per model: the axisymmetric section is cheap (2,042 ndof at
+// N = 12 on the paper's impact), a 3D solid is not (N = 2: 17,781 ndof, nq 899; N = 3:
+// 46,656 ndof).
 constexpr double kDefaultElementsPerContactRadius = 12.0;
+constexpr double kDefaultElementsPerContactRadiusSolid = 2.0;
 constexpr double kRegionRadii = 2.0;       // contact region and finest box: 2 a of arc
 constexpr double kFinestDepthRadii = 0.5;  // finest box depth: 0.5 a (Hertz's von Mises
                                            // maximum lies at 0.48 a)
@@ -73,20 +79,25 @@ struct ImpactDesign {
   // The model.
   RefinementConfig refinement;
   HierarchyOptions hierarchy;
-  std::vector<std::array<double, 2>> region;  // contact region on face eta_max, [xi]
-  double finest_arc = 0.0;                    // finest span at the pole along the arc, m
-  double finest_depth = 0.0;                  // and in depth, m
-  std::array<double, 2> stress_from{}, stress_to{};  // the axis line, geometry coordinates
+  // The contact region on face eta_max: one [lo, hi] per direction along it ([xi], or
+  // [xi], [zeta]).
+  std::vector<std::array<double, 2>> region;
+  double finest_arc = 0.0;    // largest finest span at the contact point along the surface, m
+  double finest_depth = 0.0;  // finest span into the body there, m
+  Eigen::VectorXd stress_from, stress_to;  // the axis line, geometry coordinates (m)
   int stress_points = 0;
   // One line per derived number with its reason, for igaprep's printout.
   std::vector<std::string> reasons;
 };
 
-// Hertz's contact radius and impact for a sphere of radius r and material `material` (mass
-// m) against the request's partner. Throws std::invalid_argument for what no rule can
-// design (a contact radius beyond the face).
+// The design for a sphere of radius r, material `material` and mass m against the
+// request's partner: the half-disk (axisymmetric, contact at its pole) and the solid sphere
+// (contact at (1/2, 1, 1/8), rotated to +z: geometry_builders.h). Throws
+// std::invalid_argument for what no rule can design (a contact radius beyond the face).
 ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material,
                                   double mass, const DesignRequest& request);
+ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material, double mass,
+                                const DesignRequest& request);
 
 // The mass of the full sphere of radius r, kg.
 double sphereMass(double radius, double density);

@@ -339,11 +339,12 @@ std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig
                              << "'; give either the design or the hand-made model, not both");
     }
   }
-  if (c.geometry.kind != GeometryKind::kHalfDisk) {
+  const bool halfDisk = c.geometry.kind == GeometryKind::kHalfDisk;
+  if (!halfDisk && c.geometry.kind != GeometryKind::kSphere) {
     throw inputError(doc, node, "design",
-                     Str() << "the design rule covers geometry 'half_disk' (an axisymmetric "
-                           << "sphere, contact at its pole) so far; give refinement, hierarchy "
-                           << "and contact by hand for '" << toString(c.geometry.kind) << "'");
+                     Str() << "the design rule covers the spheres ('half_disk', 'sphere') so "
+                           << "far; give refinement, hierarchy and contact by hand for '"
+                           << toString(c.geometry.kind) << "'");
   }
   const YAML::Node impact = node["impact"];
   if (bool(impact) == bool(node["contact_radius"])) {
@@ -353,7 +354,9 @@ std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig
   }
   DesignRequest q;
   q.elements_per_contact_radius =
-      getDouble(doc, node["elements_per_contact_radius"], "design.elements_per_contact_radius");
+      node["elements_per_contact_radius"]
+          ? getDouble(doc, node["elements_per_contact_radius"], "design.elements_per_contact_radius")
+          : (halfDisk ? kDefaultElementsPerContactRadius : kDefaultElementsPerContactRadiusSolid);
   q.from_impact = bool(impact);
   if (!q.from_impact) {
     q.contact_radius = getDouble(doc, node["contact_radius"], "design.contact_radius");
@@ -377,8 +380,9 @@ std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig
     }
   }
   try {
-    return designHalfDiskImpact(c.geometry.radius, c.material,
-                                sphereMass(c.geometry.radius, c.material.density), q);
+    const double r = c.geometry.radius, m = sphereMass(r, c.material.density);
+    return halfDisk ? designHalfDiskImpact(r, c.material, m, q)
+                    : designSphereImpact(r, c.material, m, q);
   } catch (const std::invalid_argument& e) {
     throw inputError(doc, node, "design", e.what());
   }
@@ -404,8 +408,8 @@ void addDesignedStressLine(const ImpactDesign& d, VisualisationConfig& v) {
     if (line.name == "axis") return;
   StressLineConfig line;
   line.name = "axis";
-  line.from = Eigen::Vector2d(d.stress_from[0], d.stress_from[1]);
-  line.to = Eigen::Vector2d(d.stress_to[0], d.stress_to[1]);
+  line.from = d.stress_from;
+  line.to = d.stress_to;
   line.points = d.stress_points;
   v.stress_lines.push_back(line);
 }

@@ -11,7 +11,7 @@ usage: check_designed_impact.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
    contact radius; the penalty used is 2 E* / (pi 0.002 a).
 2. Three other impacts, designed by editing material, radius and speed alone, where Hertz's
    quasi-static theory holds (contact time >= 12 periods of the lowest elastic mode:
-   benchmarks/design2d.py): force peak and duration within 1 % of Hertz (issue 26).
+   benchmarks/design_study.py): force peak and duration within 1 % of Hertz (issue 26).
 3. A designed sphere against a rigid plane (partner: plane), Hertz within 1 %.
 4. penalty_factor: auto on hand-made bodies: exit 2, one line naming the key.
 """

@@ -121,12 +121,81 @@ TEST_CASE("designed half-disk: region, finest spans and boxes on the exact geome
   }
 }
 
+// The exact solid sphere's surface point at (xi, 1, zeta), and the great-circle distance
+// from the contact point (+z) to it.
+double sphereDistance(double xi, double zeta) {
+  const NurbsPatch sphere = solidSphere(kR);
+  const double u[3] = {xi, 1.0, zeta};
+  const Eigen::VectorXd x = sphere.evaluate(u).x;
+  return kR * std::acos(std::clamp(x(2) / x.norm(), -1.0, 1.0));
+}
+
+TEST_CASE("designed sphere: region and boxes on the exact solid sphere", "[design]") {
+  DesignRequest q = paperImpact();
+  q.elements_per_contact_radius = kDefaultElementsPerContactRadiusSolid;
+  const ImpactDesign d = designSphereImpact(kR, kSteel, sphereMass(kR, kSteel.density), q);
+  const double a = d.contact_radius;
+  // Default level for solids (N = 2): the finest spans below a / 2, one halving less not.
+  CHECK(std::max(d.finest_arc, d.finest_depth) <= a / 2.0);
+  CHECK(2.0 * d.finest_arc > a / 2.0);
+  // The region reaches 2 a from the contact point along both surface directions, measured
+  // on the exact sphere, and is centred on the contact point (1/2, 1/8).
+  REQUIRE(d.region.size() == 2);
+  const auto& xi = d.region[0];
+  const auto& zeta = d.region[1];
+  CHECK(xi[0] + xi[1] == Approx(1.0));
+  CHECK(zeta[0] + zeta[1] == Approx(0.25));
+  for (const double x : {xi[0], xi[1]})
+    CHECK(sphereDistance(x, kSphereContactXi[2]) >= kRegionRadii * a);
+  for (const double z : {zeta[0], zeta[1]})
+    CHECK(sphereDistance(kSphereContactXi[0], z) >= kRegionRadii * a);
+  // Boxes nested, inside the first quarter of zeta (a C0 line of the circle at 1/4) and off
+  // the degenerate faces xi = 0, 1 and the seam zeta = 0.
+  const ParamBox* outer = nullptr;
+  for (const ParamBox& b : d.hierarchy.boxes) {
+    CHECK(b.lower[0] > 0.0);
+    CHECK(b.upper[0] < 1.0);
+    CHECK(b.lower[2] > 0.0);
+    CHECK(b.upper[2] < 0.25);
+    CHECK(b.upper[1] == 1.0);
+    if (outer) {
+      for (int k = 0; k < 3; ++k) {
+        CHECK(b.lower[k] >= outer->lower[k]);
+        CHECK(b.upper[k] <= outer->upper[k]);
+      }
+    }
+    outer = &b;
+  }
+  CHECK(xi[0] >= outer->lower[0]);
+  CHECK(zeta[1] <= outer->upper[2]);
+  // The stress line runs down the z axis from the contact point.
+  CHECK(d.stress_from.size() == 3);
+  CHECK(d.stress_from(2) == kR);
+  CHECK(d.stress_from(2) - d.stress_to(2) == Approx(kStressLineRadii * a));
+}
+
+TEST_CASE("designed body file: a solid sphere passes igaprep's checks", "[design]") {
+  const std::string yaml =
+      "name: designed3d\n"
+      "model: solid\n"
+      "material: {youngs_modulus: 2.11e11, poisson_ratio: 0.3, density: 7850}\n"
+      "geometry: {type: sphere, radius: 0.01}\n"
+      "design: {contact_radius: 1.0e-3}\n";
+  const BodyConfig c = parseBodyConfig(parseYamlText(yaml, "designed3d.yaml"));
+  REQUIRE(c.design.has_value());
+  CHECK(c.design->elements_per_contact_radius == kDefaultElementsPerContactRadiusSolid);
+  REQUIRE(c.contacts.size() == 1);
+  CHECK(c.contacts[0].bounds.size() == 2);
+  const HierarchicalSpace space = bodySpace(c);
+  CHECK(space.numLevels() == c.hierarchy.levels);
+}
+
 TEST_CASE("designed half-disk: a contact radius beyond the face is refused", "[design]") {
   DesignRequest q;
   q.from_impact = false;
   q.contact_radius = 0.45 * kR;  // 2 a = 0.9 r of arc > pi / 4 r
   CHECK_THROWS_WITH(designHalfDiskImpact(kR, kSteel, 1.0, q),
-                    Catch::Contains("more than half"));
+                    Catch::Contains("half the patch's extent"));
   q.contact_radius = 0.35 * kR;  // 0.7 r < pi / 4 r: still a (coarse) design
   CHECK_NOTHROW(designHalfDiskImpact(kR, kSteel, 1.0, q));
 }

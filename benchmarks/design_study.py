@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Design study of issue 26 (schemas/body_design.md): designed axisymmetric spheres against Hertz.
+"""Design study of issue 26 (schemas/body_design.md): designed spheres against Hertz.
 
 For every case of a matrix of impacts (radius, Young's modulus, Poisson's ratio, density,
 approach speed, radius ratio), this script writes a body file with only a `design` block
@@ -15,7 +15,11 @@ an independent elastodynamic reference +0.5 ... +0.7 % above Hertz), so cases wi
 T f1 < 12 (an excess above 0.5 %) are also compared with a designed model twice as fine
 (N = 24 instead of the default 12, same impact): the discretisation error.
 
-usage: design2d.py BUILD_DIR OUT_DIR [--quick] [--json FILE] [--png FILE]
+With --solid the same for 3D solid spheres (geometry sphere, 50 normal modes as the paper's
+Sect. 6, the default accuracy level N = 2) on a smaller matrix of ten impacts; the finer
+comparison (N = 3, about 47,000 ndof and minutes per case) only with --finer.
+
+usage: design_study.py BUILD_DIR OUT_DIR [--solid [--finer]] [--quick] [--json FILE] [--png FILE]
 """
 import json
 import math
@@ -30,17 +34,25 @@ REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 QUASI_STATIC_LIMIT = 12.0  # T f1 below which Hertz's quasi-static theory is doubtful here
 
 
+SOLID = "--solid" in sys.argv
+# Accuracy levels: the default and the finer comparison.
+LEVELS = (2, 3) if SOLID else (12, 24)
+
+
 def body_yaml(name, R, E, nu, rho, v, partner, N):
     partner_text = partner if isinstance(partner, str) else (
         "{radius: %r, youngs_modulus: %r, poisson_ratio: %r, density: %r}" % partner)
+    model = "solid" if SOLID else "axisymmetric"
+    geometry = "sphere" if SOLID else "half_disk"
+    extra = "reduction: {normal_modes: 50}\nvisualisation: {subdivisions: 0}\n" if SOLID else ""
     return f"""name: {name}
-model: axisymmetric
+model: {model}
 material: {{youngs_modulus: {E!r}, poisson_ratio: {nu!r}, density: {rho!r}}}
-geometry: {{type: half_disk, radius: {R!r}}}
+geometry: {{type: {geometry}, radius: {R!r}}}
 design:
   impact: {{partner: {partner_text}, approach_speed: {v!r}}}
   elements_per_contact_radius: {N!r}
-"""
+{extra}"""
 
 
 def hertz_time(R1, R2, E1, nu1, E2, nu2, m1, m2, v):
@@ -53,10 +65,14 @@ def hertz_time(R1, R2, E1, nu1, E2, nu2, m1, m2, v):
 
 
 def scene_yaml(name, sid_a, sid_b, R1, R2, v, T):
+    # The axis of the impact: y for the axisymmetric sections, z for the solids (their
+    # contact points at +y and +z).
+    def vec(x):
+        return f"[0, 0, {x!r}]" if SOLID else f"[0, {x!r}, 0]"
     return f"""name: {name}
 bodies:
-  - {{name: lower, sid: {sid_a}, position: [0, 0, 0], velocity: [0, {v / 2!r}, 0]}}
-  - {{name: upper, sid: {sid_b}, position: [0, {R1 + R2!r}, 0], orientation: [0, 1, 0, 0], velocity: [0, {-v / 2!r}, 0]}}
+  - {{name: lower, sid: {sid_a}, position: [0, 0, 0], velocity: {vec(v / 2)}}}
+  - {{name: upper, sid: {sid_b}, position: {vec(R1 + R2)}, orientation: [0, 1, 0, 0], velocity: {vec(-v / 2)}}}
 contacts:
   - {{name: impact, bodies: [lower, upper], penalty_factor: auto}}
 integrator:
@@ -65,6 +81,8 @@ integrator:
   rtol: 1.0e-6
   atol_position: {1e-12 * R1 / 0.01:.4g}
   atol_velocity: {5e-8 * v:.4g}
+  atol_rotation: 1.0e-10
+  atol_angular_velocity: {5e-6 * v * 0.01 / R1:.4g}
 """
 
 
@@ -124,6 +142,14 @@ def cases(quick):
     out = [dict(base, name="paper")]
     if quick:
         return out
+    if SOLID:
+        return out + [dict(base, name="R0.001", R=0.001), dict(base, name="v0.01", v=0.01),
+                      dict(base, name="v5", v=5.0), dict(base, name="ratio2", ratio=2),
+                      dict(name="alu_R0.005_v1", R=0.005, E=7.0e10, nu=0.33, rho=2700.0, v=1.0, ratio=1),
+                      dict(name="glass_R0.02_v0.05", R=0.02, E=6.3e10, nu=0.22, rho=2500.0, v=0.05, ratio=1),
+                      dict(name="carbide_R0.05_v2", R=0.05, E=4.0e11, nu=0.24, rho=8000.0, v=2.0, ratio=1),
+                      dict(name="polymer_R0.02_v0.05", R=0.02, E=2.0e10, nu=0.35, rho=1800.0, v=0.05, ratio=1),
+                      dict(name="nu0.2_rho4500", R=0.01, E=2.11e11, nu=0.2, rho=4500.0, v=0.5, ratio=1)]
     for R in (0.001, 0.003, 0.03, 0.1):
         out.append(dict(base, name=f"R{R:g}", R=R))
     for E in (2e10, 7e10, 4e11):
@@ -152,11 +178,12 @@ def main():
     png_path = sys.argv[sys.argv.index("--png") + 1] if "--png" in sys.argv else None
     rows = []
     print(f"{'case':>22} {'a um':>8} {'T f1':>6} {'70/Tf1^2':>8} {'ndof':>6} {'nq':>4} "
-          f"{'force':>8} {'dur':>8} {'N=24 vs N=12':>17} {'steps':>6} {'pre s':>6} {'sim s':>6}")
+          f"{'force':>8} {'dur':>8} {f'N={LEVELS[1]} vs N={LEVELS[0]}':>17} {'steps':>6} "
+          f"{'pre s':>6} {'sim s':>6}")
     for case in cases(quick):
-        r = run_case(build, out, case, 12)
-        if r["T_f1"] < QUASI_STATIC_LIMIT:
-            fine = run_case(build, out, case, 24)
+        r = run_case(build, out, case, LEVELS[0])
+        if r["T_f1"] < QUASI_STATIC_LIMIT and (not SOLID or "--finer" in sys.argv):
+            fine = run_case(build, out, case, LEVELS[1])
             r["finer_force"] = fine["force"] / r["force"] - 1
             r["finer_duration"] = fine["duration"] / r["duration"] - 1
             finer = f"{100 * r['finer_force']:+7.3f} {100 * r['finer_duration']:+7.3f} %"
@@ -168,14 +195,14 @@ def main():
               f"{r['nq']:4d} {100 * r['force_vs_hertz']:+7.3f}% {100 * r['duration_vs_hertz']:+7.3f}% "
               f"{finer:>17} {r['steps']:6d} {r['igaprep_s']:6.2f} {r['ffrsim_s']:6.2f}", flush=True)
     trusted = [r for r in rows if r["T_f1"] >= QUASI_STATIC_LIMIT]
-    doubtful = [r for r in rows if r["T_f1"] < QUASI_STATIC_LIMIT]
+    doubtful = [r for r in rows if "finer_force" in r]
     print(f"{len(rows)} cases; {len(trusted)} with T f1 >= {QUASI_STATIC_LIMIT:g}: largest "
           f"|force - Hertz| {100 * max(abs(r['force_vs_hertz']) for r in trusted):.3f} %, "
           f"|duration - Hertz| {100 * max(abs(r['duration_vs_hertz']) for r in trusted):.3f} %"
           if trusted else f"{len(rows)} cases, none with T f1 >= {QUASI_STATIC_LIMIT:g}")
     if doubtful:
-        print(f"{len(doubtful)} with T f1 < {QUASI_STATIC_LIMIT:g}: largest |force(N=24) - "
-              f"force(N=12)| {100 * max(abs(r['finer_force']) for r in doubtful):.3f} %, "
+        print(f"{len(doubtful)} with T f1 < {QUASI_STATIC_LIMIT:g} against N = {LEVELS[1]}: largest |force(N={LEVELS[1]}) - "
+              f"force(N={LEVELS[0]})| {100 * max(abs(r['finer_force']) for r in doubtful):.3f} %, "
               f"duration {100 * max(abs(r['finer_duration']) for r in doubtful):.3f} %")
     print(f"largest wall times: igaprep {max(r['igaprep_s'] for r in rows):.2f} s, "
           f"ffrsim {max(r['ffrsim_s'] for r in rows):.2f} s; largest ndof "
