@@ -109,6 +109,13 @@ void printSidSummary(const FlexibleBodySid& s, const std::string& path) {
   if (s.geometry.radius > 0.0) std::printf(", radius %.6g m", s.geometry.radius);
   if (s.geometry.length > 0.0) std::printf(", length %.6g m", s.geometry.length);
   std::printf("\n");
+  if (s.design.present) {
+    std::printf("  design               contact radius %.6g m, N = %.4g, finest %.4g m",
+                s.design.contact_radius, s.design.elements_per_contact_radius,
+                s.design.finest_element);
+    if (s.design.approach_speed > 0.0) std::printf(", impact at %.6g m/s", s.design.approach_speed);
+    std::printf("\n");
+  }
   if (s.mesh.empty()) {
     std::printf("  visualisation mesh   none\n");
   } else {
@@ -144,8 +151,7 @@ void printPreprocessSummary(const BodyConfig& config, const FlexibleBodySid& sid
   std::printf("  %-28s %s, %s frame\n", "model", toString(sid.model), toString(sid.frame));
   if (config.design) {
     std::printf("  %-28s a = %.6g m, %d levels, finest %.4g m (a / %.4g)\n", "design",
-                config.design->contact_radius, config.hierarchy.levels,
-                sid.design.finest_element,
+                config.design->contact_radius, config.hierarchy.levels, sid.design.finest_element,
                 config.design->contact_radius / sid.design.finest_element);
   }
   std::printf("  %-28s %d (%d control points, %d tied, %d fixed on the axis)\n", "ndof",

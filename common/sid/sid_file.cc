@@ -174,7 +174,8 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
   if (sid.design.present) {
     Handle d = h5::createGroup(c, file, "design");
     h5::writeScalar(c, d, "contact_radius", sid.design.contact_radius, "m");
-    h5::writeScalar(c, d, "elements_per_contact_radius", sid.design.elements_per_contact_radius, "1");
+    h5::writeScalar(c, d, "elements_per_contact_radius", sid.design.elements_per_contact_radius,
+                    "1");
     h5::writeScalar(c, d, "finest_element", sid.design.finest_element, "m");
     h5::writeScalar(c, d, "approach_speed", sid.design.approach_speed, "m/s");
     h5::writeScalar(c, d, "max_pressure", sid.design.max_pressure, "Pa");

@@ -27,8 +27,12 @@ double quarterArcSpeed(double u) {
   return 4.0 * std::tan(M_PI / 8.0) / (1.0 + t * t);
 }
 
-double ceilToGrid(double x, double h) { return std::ceil(x / h - kGridTolerance) * h; }
-double floorToGrid(double x, double h) { return std::floor(x / h + kGridTolerance) * h; }
+double ceilToGrid(double x, double h) {
+  return std::ceil(x / h - kGridTolerance) * h;
+}
+double floorToGrid(double x, double h) {
+  return std::floor(x / h + kGridTolerance) * h;
+}
 
 // How one parametric direction of the patch passes through the contact point: along the
 // surface (lateral, the boxes reach kRegionRadii a plus layers to both sides, or to one side
@@ -36,10 +40,10 @@ double floorToGrid(double x, double h) { return std::floor(x / h + kGridToleranc
 // (depth, from the contact face inwards).
 struct ChartDirection {
   bool depth = false;
-  bool one_sided = false;           // lateral, the contact point on the lower edge (knot 0)
-  double at = 0.0;                  // the contact point's knot
-  double span0 = 0.0;               // level-0 knot span there
-  double metres_per_knot = 0.0;     // length per knot there (m)
+  bool one_sided = false;              // lateral, the contact point on the lower edge (knot 0)
+  double at = 0.0;                     // the contact point's knot
+  double span0 = 0.0;                  // level-0 knot span there
+  double metres_per_knot = 0.0;        // length per knot there (m)
   std::function<double(double)> knot;  // knot at signed distance s (m) from the contact
                                        // point along the surface, or at depth s (>= 0)
   double lowest = 0.0, highest = 1.0;  // the boxes' limits (exclusive unless the contact
@@ -154,8 +158,10 @@ void designHierarchy(const std::vector<ChartDirection>& chart, double a, double 
   d->finest_arc = 0.0;
   for (const ChartDirection& c : chart) {
     const double h = std::ldexp(c.span0 * c.metres_per_knot, -halvings);
-    if (c.depth) d->finest_depth = h;
-    else d->finest_arc = std::max(d->finest_arc, h);
+    if (c.depth)
+      d->finest_depth = h;
+    else
+      d->finest_arc = std::max(d->finest_arc, h);
   }
 }
 
@@ -163,15 +169,14 @@ void designHierarchy(const std::vector<ChartDirection>& chart, double a, double 
 // inside the finest box. A region beyond half the patch's extent there (the half-disk's
 // quarter arc from pole to equator, the sphere's octant around its contact point) is no
 // longer a Hertz contact of a sphere.
-void designRegion(const std::vector<ChartDirection>& chart, double r, double a,
-                  ImpactDesign* d) {
+void designRegion(const std::vector<ChartDirection>& chart, double r, double a, ImpactDesign* d) {
   const double reach = kRegionRadii * a;
   const double limit = M_PI / 4.0 * r * (chart.size() == 3 ? std::sin(M_PI / 4.0) : 1.0);
   if (reach > limit) {
     throw std::invalid_argument(
         Str() << "the contact radius a = " << a << " m needs a contact region reaching "
-              << kRegionRadii << " a = " << reach << " m along the surface, more than "
-              << limit << " m, half the patch's extent around the contact point");
+              << kRegionRadii << " a = " << reach << " m along the surface, more than " << limit
+              << " m, half the patch's extent around the contact point");
   }
   d->region.clear();
   const int halvings = d->hierarchy.levels - 1;
@@ -238,8 +243,8 @@ ImpactDesign designOnChart(const std::vector<ChartDirection>& chart, double radi
   const double depth = std::min(kStressLineRadii * a, radius);
   d.stress_from = surface;
   d.stress_to = surface + depth * inward;
-  d.stress_points = std::clamp(static_cast<int>(std::ceil(2.0 * depth / d.finest_depth)) + 1,
-                               101, 2001);
+  d.stress_points =
+      std::clamp(static_cast<int>(std::ceil(2.0 * depth / d.finest_depth)) + 1, 101, 2001);
   return d;
 }
 
@@ -249,8 +254,8 @@ double sphereMass(double radius, double density) {
   return density * 4.0 / 3.0 * M_PI * radius * radius * radius;
 }
 
-ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material,
-                                  double mass, const DesignRequest& request) {
+ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material, double mass,
+                                  const DesignRequest& request) {
   ImpactDesign d = designOnChart(halfDiskChart(radius), radius, material, mass, request,
                                  Eigen::Vector2d(0.0, radius), Eigen::Vector2d(0.0, -1.0));
   d.refinement.elevate_degree = {2, 2};
@@ -267,8 +272,9 @@ ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& materi
 ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material, double mass,
                                 const DesignRequest& request) {
   const std::vector<ChartDirection> chart = sphereChart(radius);
-  ImpactDesign d = designOnChart(chart, radius, material, mass, request,
-                                 Eigen::Vector3d(0.0, 0.0, radius), Eigen::Vector3d(0.0, 0.0, -1.0));
+  ImpactDesign d =
+      designOnChart(chart, radius, material, mass, request, Eigen::Vector3d(0.0, 0.0, radius),
+                    Eigen::Vector3d(0.0, 0.0, -1.0));
   d.refinement.elevate_degree = {1, 2, 1};
   d.refinement.insert_knots = {3, 3, 3};
   d.refinement.insert = {{}, {}, {}};

@@ -94,8 +94,8 @@ struct ImpactDesign {
 // request's partner: the half-disk (axisymmetric, contact at its pole) and the solid sphere
 // (contact at (1/2, 1, 1/8), rotated to +z: geometry_builders.h). Throws
 // std::invalid_argument for what no rule can design (a contact radius beyond the face).
-ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material,
-                                  double mass, const DesignRequest& request);
+ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material, double mass,
+                                  const DesignRequest& request);
 ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material, double mass,
                                 const DesignRequest& request);
 

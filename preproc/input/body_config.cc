@@ -327,6 +327,45 @@ void checkModel(const YamlDocument& doc, const BodyConfig& c) {
   }
 }
 
+// Reads the request of a `design` block: the impact (partner and speed) or the contact
+// radius, and the accuracy level (default by model, impact_design.h).
+DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node, bool halfDisk) {
+  const YAML::Node impact = node["impact"];
+  if (bool(impact) == bool(node["contact_radius"])) {
+    throw inputError(doc, node, "design",
+                     "give either 'impact' (what hits the body) or 'contact_radius' (the "
+                     "largest contact radius to resolve)");
+  }
+  DesignRequest q;
+  q.elements_per_contact_radius =
+      node["elements_per_contact_radius"]
+          ? getDouble(doc, node["elements_per_contact_radius"],
+                      "design.elements_per_contact_radius")
+          : (halfDisk ? kDefaultElementsPerContactRadius : kDefaultElementsPerContactRadiusSolid);
+  q.from_impact = bool(impact);
+  if (!q.from_impact) {
+    q.contact_radius = getDouble(doc, node["contact_radius"], "design.contact_radius");
+    return q;
+  }
+  q.approach_speed = getDouble(doc, impact["approach_speed"], "design.impact.approach_speed");
+  const YAML::Node partner = impact["partner"];
+  if (!partner.IsMap()) {
+    q.partner = getString(doc, partner, "design.impact.partner") == "plane"
+                    ? DesignRequest::Partner::kPlane
+                    : DesignRequest::Partner::kSame;
+    return q;
+  }
+  const std::string key = "design.impact.partner";
+  q.partner = DesignRequest::Partner::kSphere;
+  q.partner_sphere.radius = getDouble(doc, partner["radius"], key + ".radius");
+  q.partner_sphere.youngs_modulus =
+      getDouble(doc, partner["youngs_modulus"], key + ".youngs_modulus");
+  q.partner_sphere.poisson_ratio = getDouble(doc, partner["poisson_ratio"], key + ".poisson_ratio");
+  q.partner_sphere.mass =
+      sphereMass(q.partner_sphere.radius, getDouble(doc, partner["density"], key + ".density"));
+  return q;
+}
+
 // Reads `design` (preproc/design/impact_design.h) and derives the model from it: the
 // refinement, the hierarchy and the contact region, which the file must then not give.
 std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig& c) {
@@ -346,39 +385,7 @@ std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig
                            << "far; give refinement, hierarchy and contact by hand for '"
                            << toString(c.geometry.kind) << "'");
   }
-  const YAML::Node impact = node["impact"];
-  if (bool(impact) == bool(node["contact_radius"])) {
-    throw inputError(doc, node, "design",
-                     "give either 'impact' (what hits the body) or 'contact_radius' (the "
-                     "largest contact radius to resolve)");
-  }
-  DesignRequest q;
-  q.elements_per_contact_radius =
-      node["elements_per_contact_radius"]
-          ? getDouble(doc, node["elements_per_contact_radius"], "design.elements_per_contact_radius")
-          : (halfDisk ? kDefaultElementsPerContactRadius : kDefaultElementsPerContactRadiusSolid);
-  q.from_impact = bool(impact);
-  if (!q.from_impact) {
-    q.contact_radius = getDouble(doc, node["contact_radius"], "design.contact_radius");
-  } else {
-    q.approach_speed = getDouble(doc, impact["approach_speed"], "design.impact.approach_speed");
-    const YAML::Node partner = impact["partner"];
-    if (partner.IsMap()) {
-      const std::string key = "design.impact.partner";
-      q.partner = DesignRequest::Partner::kSphere;
-      q.partner_sphere.radius = getDouble(doc, partner["radius"], key + ".radius");
-      q.partner_sphere.youngs_modulus =
-          getDouble(doc, partner["youngs_modulus"], key + ".youngs_modulus");
-      q.partner_sphere.poisson_ratio =
-          getDouble(doc, partner["poisson_ratio"], key + ".poisson_ratio");
-      q.partner_sphere.mass = sphereMass(q.partner_sphere.radius,
-                                         getDouble(doc, partner["density"], key + ".density"));
-    } else {
-      q.partner = getString(doc, partner, "design.impact.partner") == "plane"
-                      ? DesignRequest::Partner::kPlane
-                      : DesignRequest::Partner::kSame;
-    }
-  }
+  const DesignRequest q = readDesignRequest(doc, node, halfDisk);
   try {
     const double r = c.geometry.radius, m = sphereMass(r, c.material.density);
     return halfDisk ? designHalfDiskImpact(r, c.material, m, q)

@@ -72,7 +72,8 @@ void invertStressLines(const YamlDocument& doc, const NurbsPatch& geometry,
   const Eigen::MatrixXd& P = geometry.points();
   const double size = (P.colwise().maxCoeff() - P.colwise().minCoeff()).maxCoeff();
   const YAML::Node& root = doc.root;  // const: looking up creates no entries
-  const YAML::Node lines = root["visualisation"] ? root["visualisation"]["stress_lines"] : YAML::Node();
+  const YAML::Node lines =
+      root["visualisation"] ? root["visualisation"]["stress_lines"] : YAML::Node();
   const std::size_t given = lines ? lines.size() : 0;
   for (std::size_t i = 0; i < v.stress_lines.size(); ++i) {
     // Lines after the given ones were derived by the design block (body_config.h).

@@ -1,8 +1,8 @@
 #include "runtime/scene/scene.h"
 
 #include <cmath>
-#include <limits>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>

@@ -104,6 +104,9 @@ with h5py.File(designed_sid, "r") as s, h5py.File(os.path.join(out, "sphere2d_h3
     check(s["design/finest_element"][()] <= a / 12, "finest element <= a / 12 (the default)")
     ndof, ndof_h3 = int(s.attrs["ndof"]), int(h.attrs["ndof"])
     check(ndof <= ndof_h3, f"ndof {ndof} <= sphere2d_h3's {ndof_h3}")
+info = check.run([igaprep, "--info", designed_sid]).stdout
+check("design               contact radius 0.000167779 m, N = 12" in info,
+      "igaprep --info shows the design")
 f = simulate(os.path.join(scenes, "impact2d_designed.yaml"), os.path.join(out, "designed.h5"))
 h3 = simulate(os.path.join(scenes, "impact2d_h3.yaml"), os.path.join(out, "h3.h5"))
 F, T = f.attrs["max_contact_force_N"], f.attrs["contact_duration_s"]

@@ -43,7 +43,9 @@ double angleAt(double xi) {
   return std::atan2(x(0), x(1));
 }
 
-bool onGrid(double x, double h) { return std::abs(x / h - std::round(x / h)) < 1e-9; }
+bool onGrid(double x, double h) {
+  return std::abs(x / h - std::round(x / h)) < 1e-9;
+}
 
 TEST_CASE("designed half-disk: Hertz's contact radius for each partner", "[design]") {
   const double m = sphereMass(kR, kSteel.density);
@@ -219,7 +221,8 @@ TEST_CASE("designed body file: the design block gives a model igaprep reduces", 
   REQUIRE(c.visualisation.stress_lines.size() == 1);
   CHECK(c.visualisation.stress_lines[0].name == "axis");
   PreprocessSummary summary;
-  const FlexibleBodySid sid = preprocessBody(c, [](const std::string&) {}, &summary);
+  const FlexibleBodySid sid = preprocessBody(
+      c, [](const std::string&) {}, &summary);
   CHECK(sid.design.present);
   CHECK(sid.design.contact_radius == 1.0e-3);
   CHECK(sid.design.finest_element <= 1.0e-3 / 4);
