@@ -8,25 +8,26 @@
 // common/mechanics/hertz.h: a = sqrt(R* delta_max)) or given directly as the largest
 // contact radius expected.
 //
-// The rule, for the half-disk of paper Eq. (19) with contact at its pole (xi, eta) = (0, 1)
-// (arc length s = r theta along eta = 1, theta(xi) = pi/4 + 2 atan((2 xi - 1) tan(pi/8));
-// depth d = 2 r (1 - eta) along the axis xi = 0):
+// The rule works on a chart of the contact point: each parametric direction runs along the
+// surface (to both sides, or to one where the contact point is on the patch's edge) or into
+// the body (impact_design.cc: the half-disk of paper Eq. (19) at its pole (0, 1), the solid
+// sphere at (1/2, 1, 1/8)):
 //
-//   level 0   the paper's 400-element model (degrees 4 x 3, 16 x 25 spans): at the pole
-//             spans of sqrt(2) r / 16 along the arc and 2 r / 25 in depth;
-//   levels    the fewest halvings that bring both below a / N, N = elements per contact
-//             radius (default 12 axisymmetric, 2 solid);
-//   boxes     box l (l = 1 .. L) reaches kRegionRadii a along the arc and kFinestDepthRadii
-//             a in depth, plus kLayerCells cells of level l - 1 beyond, each bound snapped
-//             outwards onto the level l - 1 grid, so that every level keeps a layer of its
-//             own cells around the finer one (the grading of paper Fig. 6);
-//   region    the contact region: kRegionRadii a of arc, on the finest grid;
-//   stress    a line along the axis under the contact point, kStressLineRadii a deep.
+//   level 0   the paper's 400-element model (half-disk: degrees 4 x 3, 16 x 25 spans) or
+//             sphere3d_coarse's (degrees 3 x 3 x 3, 4 x 4 x 16 spans);
+//   levels    the fewest halvings that bring every span at the contact point below a / N,
+//             N = elements per contact radius (default 12 axisymmetric, 2 solid);
+//   boxes     box l (l = 1 .. L) reaches kRegionRadii a along the surface and
+//             kFinestDepthRadii a in depth, plus kLayerCells cells of level l - 1 beyond,
+//             each bound snapped outwards onto the level l - 1 grid, so that every level
+//             keeps a layer of its own cells around the finer one (paper Fig. 6);
+//   region    the contact region: kRegionRadii a along the surface, on the finest grid;
+//   stress    a line along the normal under the contact point, kStressLineRadii a deep.
 //
 // Measured on the paper's Sect. 5 impact (a = 0.168 mm; schemas/body_design.md): finest
 // spans of a / 12.2 (N = 12, 6 halvings) and a / 24.3 (N = 16 or 24, 7 halvings) give force
 // peaks 0.035 % apart; boxes 0.5 a or 1 a deep, 2 or 4 layer cells, regions of 1.5 a to
-// 3 a change it by less than 0.002 %.
+// 3 a change it by less than 0.002 %. On Sect. 6 (3D), N = 3 moves it by 0.063 % from N = 2.
 #pragma once
 
 #include <array>
