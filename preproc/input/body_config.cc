@@ -421,6 +421,18 @@ void addDesignedStressLine(const ImpactDesign& d, VisualisationConfig& v) {
   v.stress_lines.push_back(line);
 }
 
+// What a designed body gets where its file is silent: the stress line 'axis' and, for a
+// solid, kDefaultNormalModesSolid normal modes (impact_design.h).
+void addDesignedDefaults(const YamlDocument& doc, BodyConfig& c) {
+  addDesignedStressLine(*c.design, c.visualisation);
+  const YAML::Node& root = doc.root;  // const: looking up creates no entries
+  const bool modesGiven = root["reduction"] && isGiven(doc, root["reduction"]["normal_modes"]);
+  if (c.model != ModelKind::kSolid || modesGiven) return;
+  c.reduction.normal_modes = kDefaultNormalModesSolid;
+  c.design->reasons.push_back(Str() << "normal modes: " << kDefaultNormalModesSolid
+                                    << " (a 3D sphere has many below the quasi-static cutoff)");
+}
+
 }  // namespace
 
 double ReductionConfig::dampingRatio(double f_hz, double f1_hz) const {
@@ -460,7 +472,7 @@ BodyConfig readBodyConfig(YamlDocument doc) {
   readMarkers(doc, root["markers"], d, &c.markers);
   parseReduction(doc, root["reduction"], !c.contacts.empty(), c.markers, &c.reduction);
   c.visualisation = readVisualisation(doc, root["visualisation"], d);
-  if (c.design) addDesignedStressLine(*c.design, c.visualisation);
+  if (c.design) addDesignedDefaults(doc, c);
   c.source = std::move(doc);
   return c;
 }

@@ -186,6 +186,11 @@ TEST_CASE("designed body file: a solid sphere passes igaprep's checks", "[design
   const BodyConfig c = parseBodyConfig(parseYamlText(yaml, "designed3d.yaml"));
   REQUIRE(c.design.has_value());
   CHECK(c.design->elements_per_contact_radius == kDefaultElementsPerContactRadiusSolid);
+  // The file gives no normal modes: a designed solid gets kDefaultNormalModesSolid.
+  CHECK(c.reduction.normal_modes == kDefaultNormalModesSolid);
+  const BodyConfig given = parseBodyConfig(
+      parseYamlText(yaml + "reduction: {normal_modes: 7}\n", "designed3d.yaml"));
+  CHECK(given.reduction.normal_modes == 7);
   REQUIRE(c.contacts.size() == 1);
   CHECK(c.contacts[0].bounds.size() == 2);
   const HierarchicalSpace space = bodySpace(c);
