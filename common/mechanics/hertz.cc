@@ -25,16 +25,22 @@ double durationIntegral() {
 
 }  // namespace
 
+double effectiveModulus(const HertzSphere& a, const HertzSphere& b) {
+  return 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
+                (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
+}
+
+double effectiveRadius(const HertzSphere& a, const HertzSphere& b) {
+  return 1.0 / (1.0 / a.radius + 1.0 / b.radius);
+}
+
 double hertzStiffness(const HertzSphere& a, const HertzSphere& b) {
   for (const HertzSphere* s : {&a, &b}) {
     FFRIGA_CHECK(
         s->youngs_modulus > 0 && s->radius > 0 && s->poisson_ratio > -1 && s->poisson_ratio < 0.5,
         "sphere E = " << s->youngs_modulus << ", R = " << s->radius);
   }
-  const double Estar = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
-                              (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
-  const double Rstar = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
-  return 4.0 / 3.0 * Estar * std::sqrt(Rstar);
+  return 4.0 / 3.0 * effectiveModulus(a, b) * std::sqrt(effectiveRadius(a, b));
 }
 
 namespace {
@@ -127,11 +133,8 @@ std::vector<double> hertzForceHistory(const HertzImpact& h, double v,
 }
 
 HertzContactPatch hertzContactPatch(const HertzSphere& a, const HertzSphere& b, double force) {
-  const double eStar = 1.0 / ((1.0 - a.poisson_ratio * a.poisson_ratio) / a.youngs_modulus +
-                              (1.0 - b.poisson_ratio * b.poisson_ratio) / b.youngs_modulus);
-  const double rStar = 1.0 / (1.0 / a.radius + 1.0 / b.radius);
   HertzContactPatch p;
-  p.radius = std::cbrt(3.0 * force * rStar / (4.0 * eStar));
+  p.radius = std::cbrt(3.0 * force * effectiveRadius(a, b) / (4.0 * effectiveModulus(a, b)));
   p.max_pressure = p.radius > 0.0 ? 3.0 * force / (2.0 * std::acos(-1.0) * p.radius * p.radius) : 0.0;
   return p;
 }

@@ -40,6 +40,11 @@ struct HertzImpact {
   double preload = 0.0;   // P, N (0: two free bodies, or no gravity along the normal)
 };
 
+// E* of 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2, Pa, and R* of 1/R* = 1/R1 + 1/R2, m (an
+// infinite E or R: a rigid body or a plane; both rigid: E* = infinity).
+double effectiveModulus(const HertzSphere& a, const HertzSphere& b);
+double effectiveRadius(const HertzSphere& a, const HertzSphere& b);
+
 // K = 4/3 E* sqrt(R*) of F = K delta^(3/2), N/m^(3/2) (masses are not used).
 double hertzStiffness(const HertzSphere& a, const HertzSphere& b);
 

@@ -48,6 +48,8 @@ struct ChartDirection {
                                        // point along the surface, or at depth s (>= 0)
   double lowest = 0.0, highest = 1.0;  // the boxes' limits (exclusive unless the contact
                                        // point's own edge)
+  double reach_limit = 0.0;            // lateral: half the surface's extent from the contact point
+                                       // to the nearest limit (m): the largest region it admits
 };
 
 // The half-disk of paper Eq. (19), contact at its pole (0, 1): xi along the upper arc
@@ -59,6 +61,7 @@ std::vector<ChartDirection> halfDiskChart(double r) {
   xi.span0 = 1.0 / 16.0;
   xi.metres_per_knot = r * quarterArcSpeed(0.0);
   xi.knot = [r](double s) { return knotOfQuarterArc(s / r); };
+  xi.reach_limit = 0.5 * r * M_PI / 2.0;  // the quarter arc from the pole to the equator
   ChartDirection eta;
   eta.depth = true;
   eta.at = 1.0;
@@ -81,6 +84,7 @@ std::vector<ChartDirection> sphereChart(double r) {
   xi.span0 = 1.0 / 4.0;
   xi.metres_per_knot = r * quarterArcSpeed(xi.at);
   xi.knot = [r, theta0](double s) { return knotOfQuarterArc(theta0 + s / r); };
+  xi.reach_limit = 0.5 * r * M_PI / 2.0;  // the pole or the equator pi/4 away, each side
   ChartDirection eta;
   eta.depth = true;
   eta.at = 1.0;
@@ -94,10 +98,11 @@ std::vector<ChartDirection> sphereChart(double r) {
   zeta.metres_per_knot = ring * 4.0 * quarterArcSpeed(0.5);
   zeta.knot = [ring, phi0](double s) { return 0.25 * knotOfQuarterArc(phi0 + s / ring); };
   zeta.highest = 0.25;  // a C0 knot line of the circle: no box crosses it
+  zeta.reach_limit = 0.5 * ring * M_PI / 2.0;  // the seam or that line pi/4 away, each side
   return {xi, eta, zeta};
 }
 
-// Hertz's impact for the request, and the contact radius a = sqrt(R* delta_max).
+// Hertz's impact for the request, and its contact patch at the force peak.
 void resolveImpact(double radius, const IsotropicMaterial& material, double mass,
                    const DesignRequest& request, ImpactDesign* d) {
   if (!request.from_impact) {
@@ -110,11 +115,12 @@ void resolveImpact(double radius, const IsotropicMaterial& material, double mass
   if (request.partner == DesignRequest::Partner::kPlane) partner = HertzSphere{inf, 0.0, inf, inf};
   if (request.partner == DesignRequest::Partner::kSphere) partner = request.partner_sphere;
   const HertzImpact h = hertzImpact(self, partner, request.approach_speed);
-  const double rStar = 1.0 / (1.0 / radius + 1.0 / partner.radius);
+  // The patch at the force peak: a = (3 F R* / (4 E*))^(1/3) = sqrt(R* delta_max).
+  const HertzContactPatch patch = hertzContactPatch(self, partner, h.max_force);
   d->hertz = h;
   d->approach_speed = request.approach_speed;
-  d->contact_radius = std::sqrt(rStar * h.max_approach);
-  d->max_pressure = hertzContactPatch(self, partner, h.max_force).max_pressure;
+  d->contact_radius = patch.radius;
+  d->max_pressure = patch.max_pressure;
 }
 
 // The interval of direction c covered by a box reaching `lateral` along the surface (both
@@ -169,9 +175,11 @@ void designHierarchy(const std::vector<ChartDirection>& chart, double a, double 
 // inside the finest box. A region beyond half the patch's extent there (the half-disk's
 // quarter arc from pole to equator, the sphere's octant around its contact point) is no
 // longer a Hertz contact of a sphere.
-void designRegion(const std::vector<ChartDirection>& chart, double r, double a, ImpactDesign* d) {
+void designRegion(const std::vector<ChartDirection>& chart, double a, ImpactDesign* d) {
   const double reach = kRegionRadii * a;
-  const double limit = M_PI / 4.0 * r * (chart.size() == 3 ? std::sin(M_PI / 4.0) : 1.0);
+  double limit = std::numeric_limits<double>::infinity();
+  for (const ChartDirection& c : chart)
+    if (!c.depth) limit = std::min(limit, c.reach_limit);
   if (reach > limit) {
     throw std::invalid_argument(
         Str() << "the contact radius a = " << a << " m needs a contact region reaching "
@@ -239,7 +247,7 @@ ImpactDesign designOnChart(const std::vector<ChartDirection>& chart, double radi
   const double a = d.contact_radius;
   d.elements_per_contact_radius = request.elements_per_contact_radius;
   designHierarchy(chart, a, request.elements_per_contact_radius, &d);
-  designRegion(chart, radius, a, &d);
+  designRegion(chart, a, &d);
   const double depth = std::min(kStressLineRadii * a, radius);
   d.stress_from = surface;
   d.stress_to = surface + depth * inward;

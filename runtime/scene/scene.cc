@@ -10,6 +10,7 @@
 #include "common/input/json_schema.h"
 #include "common/input/schemas.h"
 #include "common/input/yaml_overrides.h"
+#include "common/mechanics/hertz.h"
 #include "runtime/bodies/quasi_static_rule.h"
 #include "runtime/contact/contact_pair.h"
 #include "runtime/contact/obstacle_contact.h"
@@ -217,15 +218,18 @@ constexpr double kAutoPenaltyPenetration = 0.002;
 // radii (body_b < 0: a rigid obstacle, infinitely stiff).
 double SceneBuilder::automaticPenalty(std::size_t c, int body_a, int body_b) const {
   const MultibodySystem& sys = *scene_.system;
-  double compliance = 0.0, radius = std::numeric_limits<double>::infinity();
+  const double inf = std::numeric_limits<double>::infinity();
+  double radius = inf;
+  HertzSphere sides[2] = {{inf, 0.0, inf, inf}, {inf, 0.0, inf, inf}};  // rigid unless flexible
   std::string names;
-  for (const int b : {body_a, body_b}) {
+  for (int i = 0; i < 2; ++i) {
+    const int b = i == 0 ? body_a : body_b;
     if (b < 0) continue;
     const FlexibleBodySid& sid = sys.body(b).sid();
     names += (names.empty() ? "'" : " nor '") + sys.body(b).name() + "'";
     if (sid.nq() > 0) {
-      const double nu = sid.material.poisson_ratio;
-      compliance += (1.0 - nu * nu) / sid.material.youngs_modulus;
+      sides[i].youngs_modulus = sid.material.youngs_modulus;
+      sides[i].poisson_ratio = sid.material.poisson_ratio;
     }
     if (sid.design.present) radius = std::min(radius, sid.design.contact_radius);
   }
@@ -237,9 +241,10 @@ double SceneBuilder::automaticPenalty(std::size_t c, int body_a, int body_b) con
                            << "from a body file with 'design'); neither " << names
                            << " is: give c_p in N/m^3");
   }
-  if (!(compliance > 0.0))
+  const double modulus = effectiveModulus(sides[0], sides[1]);
+  if (!std::isfinite(modulus))
     throw inputError(doc(), node, key, "'auto' needs a flexible body in the pair");
-  return 2.0 / (compliance * M_PI * kAutoPenaltyPenetration * radius);
+  return 2.0 * modulus / (M_PI * kAutoPenaltyPenetration * radius);
 }
 
 // Pair c's penalty and search settings (body_b < 0: an obstacle).
