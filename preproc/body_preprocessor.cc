@@ -338,6 +338,11 @@ void BodyPreprocessor::sampleVisualisation() {
     sid_.design.finest_element = std::max(d.finest_arc, d.finest_depth);
     sid_.design.approach_speed = d.approach_speed;
     sid_.design.max_pressure = d.max_pressure;
+    sid_.design.surface_radius = d.surface_radius;
+    sid_.design.contact_point = Eigen::Vector3d::Zero();
+    sid_.design.contact_normal = Eigen::Vector3d::Zero();
+    sid_.design.contact_point.head(d.contact_point.size()) = d.contact_point;
+    sid_.design.contact_normal.head(d.contact_normal.size()) = d.contact_normal;
   }
   const IsotropicMaterial& material = config_.material;
   const Eigen::MatrixXd& P = space_->controlPoints();

@@ -93,6 +93,11 @@ struct SidDesign {
   double finest_element = 0.0;               // m: the finest span at the contact point
   double approach_speed = 0.0;               // m/s of the designed impact; 0: a was given
   double max_pressure = 0.0;                 // Pa, Hertz's p0 of that impact; 0: a was given
+  // Where (optional: SIDs before 2026-12-07 lack them; 0 / empty then): the surface's radius
+  // of curvature at the contact point (m), the point and its outward normal in the body's
+  // geometry coordinates (m; unit).
+  double surface_radius = 0.0;
+  Eigen::VectorXd contact_point, contact_normal;
 };
 
 struct FlexibleBodySid {

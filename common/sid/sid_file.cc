@@ -179,6 +179,9 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
     h5::writeScalar(c, d, "finest_element", sid.design.finest_element, "m");
     h5::writeScalar(c, d, "approach_speed", sid.design.approach_speed, "m/s");
     h5::writeScalar(c, d, "max_pressure", sid.design.max_pressure, "Pa");
+    h5::writeScalar(c, d, "surface_radius", sid.design.surface_radius, "m");
+    h5::writeVector(c, d, "contact_point", sid.design.contact_point, "m");
+    h5::writeVector(c, d, "contact_normal", sid.design.contact_normal, "1");
   }
   if (!sid.mesh.empty()) {
     Handle v = h5::createGroup(c, file, "visualisation");
@@ -217,6 +220,13 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
     sid->design.finest_element = finiteScalar(c, d, "/design", "finest_element");
     sid->design.approach_speed = finiteScalar(c, d, "/design", "approach_speed");
     sid->design.max_pressure = finiteScalar(c, d, "/design", "max_pressure");
+    if (h5::exists(d, "surface_radius")) {
+      sid->design.surface_radius = finiteScalar(c, d, "/design", "surface_radius");
+      sid->design.contact_point = finiteVector(c, d, "/design", "contact_point");
+      sid->design.contact_normal = finiteVector(c, d, "/design", "contact_normal");
+      if (sid->design.contact_point.size() != 3 || sid->design.contact_normal.size() != 3)
+        c.fail("/design/contact_point and contact_normal must have 3 components");
+    }
   }
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
     Handle v = h5::openGroup(c, file, "visualisation");

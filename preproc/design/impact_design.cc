@@ -7,7 +7,10 @@
 #include <stdexcept>
 
 #include "common/base/error.h"
+#include "preproc/design/contact_chart.h"
+#include "preproc/geometry/contact_region.h"
 #include "preproc/geometry/geometry_builders.h"
+#include "preproc/geometry/patch_volume.h"
 
 namespace ffriga {
 
@@ -16,90 +19,11 @@ namespace {
 // A bound is on a grid line when within this of it (the checks snap within 1e-9).
 constexpr double kGridTolerance = 1e-9;
 
-// The knot u of a rational quadratic quarter arc (weights 1, sqrt(1/2), 1) at angle theta
-// from its start: the inverse of theta(u) = pi/4 + 2 atan((2 u - 1) tan(pi/8)).
-double knotOfQuarterArc(double theta) {
-  return 0.5 * (1.0 + std::tan(0.5 * theta - M_PI / 8.0) / std::tan(M_PI / 8.0));
-}
-// Its angle per knot at u: theta'(u) = 4 tan(pi/8) / (1 + ((2u - 1) tan(pi/8))^2).
-double quarterArcSpeed(double u) {
-  const double t = (2.0 * u - 1.0) * std::tan(M_PI / 8.0);
-  return 4.0 * std::tan(M_PI / 8.0) / (1.0 + t * t);
-}
-
 double ceilToGrid(double x, double h) {
   return std::ceil(x / h - kGridTolerance) * h;
 }
 double floorToGrid(double x, double h) {
   return std::floor(x / h + kGridTolerance) * h;
-}
-
-// How one parametric direction of the patch passes through the contact point: along the
-// surface (lateral, the boxes reach kRegionRadii a plus layers to both sides, or to one side
-// where the contact point lies on the patch's edge: the half-disk's axis) or into the body
-// (depth, from the contact face inwards).
-struct ChartDirection {
-  bool depth = false;
-  bool one_sided = false;              // lateral, the contact point on the lower edge (knot 0)
-  double at = 0.0;                     // the contact point's knot
-  double span0 = 0.0;                  // level-0 knot span there
-  double metres_per_knot = 0.0;        // length per knot there (m)
-  std::function<double(double)> knot;  // knot at signed distance s (m) from the contact
-                                       // point along the surface, or at depth s (>= 0)
-  double lowest = 0.0, highest = 1.0;  // the boxes' limits (exclusive unless the contact
-                                       // point's own edge)
-  double reach_limit = 0.0;            // lateral: half the surface's extent from the contact point
-                                       // to the nearest limit (m): the largest region it admits
-};
-
-// The half-disk of paper Eq. (19), contact at its pole (0, 1): xi along the upper arc
-// (theta = theta(xi)), eta from the lower to the upper arc (depth 2 r (1 - eta) on the
-// axis). Level 0: the paper's 400-element model, 16 x 25 spans.
-std::vector<ChartDirection> halfDiskChart(double r) {
-  ChartDirection xi;
-  xi.one_sided = true;
-  xi.span0 = 1.0 / 16.0;
-  xi.metres_per_knot = r * quarterArcSpeed(0.0);
-  xi.knot = [r](double s) { return knotOfQuarterArc(s / r); };
-  xi.reach_limit = 0.5 * r * M_PI / 2.0;  // the quarter arc from the pole to the equator
-  ChartDirection eta;
-  eta.depth = true;
-  eta.at = 1.0;
-  eta.span0 = 1.0 / 25.0;
-  eta.metres_per_knot = 2.0 * r;
-  eta.knot = [r](double d) { return 1.0 - d / (2.0 * r); };
-  return {xi, eta};
-}
-
-// The solid sphere (the half-disk revolved, geometry_builders.h), contact at (1/2, 1, 1/8):
-// polar angle theta0 = theta(1/2) = pi/4 along xi, azimuth phi0 = pi/4 along zeta (the
-// first quarter of the circle, zeta in [0, 1/4]: u = 4 zeta), eta into the body along the
-// half-disk's chord, which meets the normal at theta0 under 45 degrees (normal depth
-// 2 r cos^2(theta0) (1 - eta) = r (1 - eta)). Level 0: degrees 3 x 3 x 3, 4 x 4 x 16 spans
-// (sphere3d_coarse.yaml).
-std::vector<ChartDirection> sphereChart(double r) {
-  const double theta0 = M_PI / 4.0, phi0 = M_PI / 4.0;
-  ChartDirection xi;
-  xi.at = kSphereContactXi[0];
-  xi.span0 = 1.0 / 4.0;
-  xi.metres_per_knot = r * quarterArcSpeed(xi.at);
-  xi.knot = [r, theta0](double s) { return knotOfQuarterArc(theta0 + s / r); };
-  xi.reach_limit = 0.5 * r * M_PI / 2.0;  // the pole or the equator pi/4 away, each side
-  ChartDirection eta;
-  eta.depth = true;
-  eta.at = 1.0;
-  eta.span0 = 1.0 / 4.0;
-  eta.metres_per_knot = 2.0 * r * std::cos(theta0);  // the chord: an element's edge
-  eta.knot = [r](double d) { return 1.0 - d / r; };
-  ChartDirection zeta;
-  zeta.at = kSphereContactXi[2];
-  zeta.span0 = 1.0 / 16.0;
-  const double ring = r * std::sin(theta0);  // radius of the parallel through the contact
-  zeta.metres_per_knot = ring * 4.0 * quarterArcSpeed(0.5);
-  zeta.knot = [ring, phi0](double s) { return 0.25 * knotOfQuarterArc(phi0 + s / ring); };
-  zeta.highest = 0.25;  // a C0 knot line of the circle: no box crosses it
-  zeta.reach_limit = 0.5 * ring * M_PI / 2.0;  // the seam or that line pi/4 away, each side
-  return {xi, eta, zeta};
 }
 
 // Hertz's impact for the request, and its contact patch at the force peak.
@@ -124,18 +48,17 @@ void resolveImpact(double radius, const IsotropicMaterial& material, double mass
 }
 
 // The interval of direction c covered by a box reaching `lateral` along the surface (both
-// sides) or `deep` into the body, snapped outwards onto the grid of spacing g, inside the
-// direction's limits and inside `outer` (the coarser box).
+// sides, or the one away from the patch's edge) or `deep` into the body, snapped outwards
+// onto the grid of spacing g, inside the direction's limits (a limit is reached only where
+// the contact point lies on it) and inside `outer` (the coarser box).
 std::array<double, 2> interval(const ChartDirection& c, double lateral, double deep, double g,
                                const std::array<double, 2>& outer) {
+  const bool onLowest = c.at <= c.lowest, onHighest = c.at >= c.highest;
+  const double lo = c.depth ? c.knot(deep) : c.knot(-lateral);
+  const double hi = c.depth ? c.knot(deep) : c.knot(lateral);
   std::array<double, 2> iv;
-  if (c.depth) {
-    iv = {std::max(floorToGrid(c.knot(deep), g), c.lowest + g), c.at};
-  } else {
-    const double lo = c.one_sided ? c.lowest : floorToGrid(c.knot(-lateral), g);
-    iv = {c.one_sided ? lo : std::max(lo, c.lowest + g),
-          std::min(ceilToGrid(c.knot(lateral), g), c.highest - g)};
-  }
+  iv[0] = onLowest ? c.lowest : std::max(floorToGrid(std::min(lo, c.at), g), c.lowest + g);
+  iv[1] = onHighest ? c.highest : std::min(ceilToGrid(std::max(hi, c.at), g), c.highest - g);
   return {std::max(iv[0], outer[0]), std::min(iv[1], outer[1])};
 }
 
@@ -230,30 +153,131 @@ void explain(const DesignRequest& q, const std::string& level0, ImpactDesign* d)
   std::string region;
   for (const auto& iv : d->region)
     region += Str() << (region.empty() ? "" : " x ") << "[" << iv[0] << ", " << iv[1] << "]";
-  out.push_back(Str() << "contact region: " << region << " on face eta_max, " << kRegionRadii
+  out.push_back(Str() << "contact region: " << region << " on face "
+                      << faceName(d->face_direction, d->face_upper) << ", " << kRegionRadii
                       << " a along the surface on the finest grid");
   out.push_back(Str() << "stress line 'axis': " << kStressLineRadii << " a deep under the "
                       << "contact point, " << d->stress_points << " points");
 }
 
-// The design on a chart: levels, boxes, region, the stress line from `surface` inwards
-// along `inward` (geometry coordinates).
+// The design on a chart: levels, boxes, region, the stress line from the contact point
+// inwards along the normal, at most `thickness` deep (the body's extent there).
 ImpactDesign designOnChart(const std::vector<ChartDirection>& chart, double radius,
                            const IsotropicMaterial& material, double mass,
                            const DesignRequest& request, const Eigen::VectorXd& surface,
-                           const Eigen::VectorXd& inward) {
+                           const Eigen::VectorXd& outward, double thickness) {
   ImpactDesign d;
   resolveImpact(radius, material, mass, request, &d);
   const double a = d.contact_radius;
   d.elements_per_contact_radius = request.elements_per_contact_radius;
+  d.surface_radius = radius;
+  d.contact_point = surface;
+  d.contact_normal = outward;
   designHierarchy(chart, a, request.elements_per_contact_radius, &d);
   designRegion(chart, a, &d);
-  const double depth = std::min(kStressLineRadii * a, radius);
+  const double depth = std::min(kStressLineRadii * a, thickness);
   d.stress_from = surface;
-  d.stress_to = surface + depth * inward;
+  d.stress_to = surface - depth * outward;
   d.stress_points =
       std::clamp(static_cast<int>(std::ceil(2.0 * depth / d.finest_depth)) + 1, 101, 2001);
   return d;
+}
+
+// Level 0 of an explicit patch (header comment): degree kLevel0Degree, uniform spans of
+// about the same length in every direction, on a grid that holds the patch's own knots.
+RefinementConfig designLevel0(const NurbsPatch& patch, const std::vector<double>& xi,
+                              std::vector<double>* span0) {
+  const int dims = patch.paramDim();
+  const std::vector<double> lengths = isoCurveLengths(patch, xi);
+  const double h = *std::min_element(lengths.begin(), lengths.end()) / kLevel0MinSpans;
+  RefinementConfig r;
+  span0->clear();
+  for (int a = 0; a < dims; ++a) {
+    const KnotVector& kn = patch.knots(a);
+    if (kn.front() != 0.0 || kn.back() != 1.0) {
+      throw std::invalid_argument(Str() << "a designed patch needs knot vectors from 0 to 1; "
+                                        << "direction " << a << " runs from " << kn.front()
+                                        << " to " << kn.back());
+    }
+    const int least = std::max(kLevel0MinSpans, static_cast<int>(std::ceil(lengths[a] / h)));
+    int n = least;
+    auto onGrid = [&kn](int m) {
+      for (double b : kn.breaks())
+        if (std::abs(b * m - std::round(b * m)) > kGridTolerance * m) return false;
+      return true;
+    };
+    while (!onGrid(n) && n < 8 * least) ++n;
+    if (!onGrid(n)) {
+      throw std::invalid_argument(Str() << "the knots of direction " << a << " lie on no uniform"
+                                        << " grid of " << least << " to " << 8 * least
+                                        << " spans; the design's level 0 needs one");
+    }
+    r.elevate_degree.push_back(std::max(0, kLevel0Degree - patch.degree(a)));
+    r.insert_knots.push_back(0);
+    std::vector<double> insert;
+    const std::vector<double> breaks = kn.breaks();
+    for (int j = 1; j < n; ++j) {
+      const double u = static_cast<double>(j) / n;
+      if (std::none_of(breaks.begin(), breaks.end(),
+                       [u](double b) { return std::abs(b - u) < kGridTolerance; }))
+        insert.push_back(u);
+    }
+    r.insert.push_back(insert);
+    span0->push_back(1.0 / n);
+  }
+  return r;
+}
+
+// The checks of an explicit patch's contact point (schemas/body_design.md): on the body,
+// not degenerate, on the axis of an axisymmetric section (and smooth there), inside the
+// face of a solid, convex; spherical where the design comes from an impact.
+void checkContactPoint(const FacePoint& f, const std::vector<double>& xi, int face_direction,
+                       bool axisymmetric, bool from_impact) {
+  for (std::size_t a = 0; a < xi.size(); ++a) {
+    if (static_cast<int>(a) != face_direction && (xi[a] < 0.0 || xi[a] > 1.0))
+      throw std::invalid_argument(Str() << "the contact point's parameters must lie in [0, 1] "
+                                        << "(on the face); direction " << a << " has " << xi[a]);
+  }
+  if (f.degenerate()) {
+    throw std::invalid_argument(
+        "the contact point is a degenerate point of the face (its surface Jacobian vanishes: "
+        "a pole, a collapsed edge or a seam); choose a regular point");
+  }
+  const double tol = 1e-9 * f.size;
+  if (axisymmetric) {
+    if (std::abs(f.x(0)) > tol) {
+      throw std::invalid_argument(Str() << "an axisymmetric impact happens on the axis x = 0; "
+                                        << "the contact point is at x = " << f.x(0) << " m");
+    }
+    const Eigen::VectorXd t = f.tangents[0].normalized();
+    if (std::abs(t(1)) > 1e-6) {
+      throw std::invalid_argument(Str() << "the surface is not smooth on the axis (its meridian "
+                                        << "meets the axis at " << std::acos(std::abs(t(1))) * 180 / M_PI
+                                        << " degrees, not 90): a tip, no Hertz contact");
+    }
+  } else {
+    for (std::size_t a = 0; a < xi.size(); ++a) {
+      if (static_cast<int>(a) != face_direction && (xi[a] <= 0.0 || xi[a] >= 1.0))
+        throw std::invalid_argument(Str() << "the contact point of a solid must lie inside its "
+                                          << "face; direction " << a << " is on the edge "
+                                          << xi[a]);
+    }
+  }
+  // (+ 0.0: a flat face prints 0, not -0)
+  const double k1 = f.curvatures.front() + 0.0, k2 = f.curvatures.back() + 0.0;
+  if (!(k1 > 0.0)) {
+    const std::string both =
+        f.curvatures.size() > 1 ? std::string(Str() << "s " << k1 << " and " << k2) : Str() << " " << k1;
+    throw std::invalid_argument(Str() << "the contact point is not convex (principal curvature"
+                                      << both << " 1/m; concave < 0, flat 0): Hertz's contact "
+                                      << "needs a convex point");
+  }
+  if (from_impact && k2 - k1 > kSphericalTolerance * k2) {
+    throw std::invalid_argument(Str() << "the principal radii of curvature " << 1.0 / k2
+                                      << " and " << 1.0 / k1 << " m differ: an elliptical Hertz "
+                                      << "contact, not designed from the impact yet; give "
+                                      << "design.contact_radius (the ellipse's larger semi-axis)");
+  }
 }
 
 }  // namespace
@@ -265,7 +289,7 @@ double sphereMass(double radius, double density) {
 ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material, double mass,
                                   const DesignRequest& request) {
   ImpactDesign d = designOnChart(halfDiskChart(radius), radius, material, mass, request,
-                                 Eigen::Vector2d(0.0, radius), Eigen::Vector2d(0.0, -1.0));
+                                 Eigen::Vector2d(0.0, radius), Eigen::Vector2d(0.0, 1.0), radius);
   d.refinement.elevate_degree = {2, 2};
   d.refinement.insert_knots = {15, 24};
   d.refinement.insert = {{}, {}};
@@ -278,11 +302,11 @@ ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& materi
 }
 
 ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material, double mass,
-                                const DesignRequest& request) {
+                                const DesignRequest& request, const Eigen::Vector3d& direction) {
   const std::vector<ChartDirection> chart = sphereChart(radius);
+  const Eigen::Vector3d n = direction.normalized();
   ImpactDesign d =
-      designOnChart(chart, radius, material, mass, request, Eigen::Vector3d(0.0, 0.0, radius),
-                    Eigen::Vector3d(0.0, 0.0, -1.0));
+      designOnChart(chart, radius, material, mass, request, radius * n, n, radius);
   d.refinement.elevate_degree = {1, 2, 1};
   d.refinement.insert_knots = {3, 3, 3};
   d.refinement.insert = {{}, {}, {}};
@@ -291,6 +315,40 @@ ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material
                 << chart[0].span0 * chart[0].metres_per_knot << " x "
                 << chart[2].span0 * chart[2].metres_per_knot << " m along the surface, "
                 << chart[1].span0 * chart[1].metres_per_knot << " m deep",
+          &d);
+  return d;
+}
+
+ImpactDesign designPatchImpact(const NurbsPatch& patch, bool axisymmetric,
+                               const IsotropicMaterial& material, int face_direction,
+                               bool face_upper, const std::vector<double>& parameters,
+                               const DesignRequest& request) {
+  std::vector<double> xi;
+  for (int a = 0, k = 0; a < patch.paramDim(); ++a)
+    xi.push_back(a == face_direction ? (face_upper ? 1.0 : 0.0) : parameters[k++]);
+  const FacePoint f = facePoint(patch, face_direction, face_upper, xi);
+  checkContactPoint(f, xi, face_direction, axisymmetric, request.from_impact);
+  std::vector<double> span0;
+  const RefinementConfig level0 = designLevel0(patch, xi, &span0);
+  const std::vector<ChartDirection> chart = patchChart(patch, f, face_direction, xi, span0);
+  // The surface's radius of curvature at the point (spherical: the mean of the two).
+  double mean = 0.0;
+  for (double k : f.curvatures) mean += k / f.curvatures.size();
+  const double mass = material.density * patchVolume(patch, axisymmetric);
+  ImpactDesign d = designOnChart(chart, 1.0 / mean, material, mass, request, f.x, f.normal,
+                                 chart[face_direction].reach_limit);
+  d.face_direction = face_direction;
+  d.face_upper = face_upper;
+  d.refinement = level0;
+  std::string spans;
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    spans += Str() << (a ? " x " : "") << std::lround(1.0 / span0[a]);
+  }
+  explain(request,
+          Str() << "the patch at degree >= " << kLevel0Degree << ", " << spans
+                << " uniform spans (at least " << kLevel0MinSpans
+                << " across its shortest extent), surface radius of curvature " << 1.0 / mean
+                << " m at the contact point, mass " << mass << " kg",
           &d);
   return d;
 }

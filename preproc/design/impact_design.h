@@ -8,13 +8,15 @@
 // common/mechanics/hertz.h: a = sqrt(R* delta_max)) or given directly as the largest
 // contact radius expected.
 //
-// The rule works on a chart of the contact point: each parametric direction runs along the
-// surface (to both sides, or to one where the contact point is on the patch's edge) or into
-// the body (impact_design.cc: the half-disk of paper Eq. (19) at its pole (0, 1), the solid
-// sphere at (1/2, 1, 1/8)):
+// The rule works on a chart of the contact point (contact_chart.h): each parametric
+// direction runs along the surface (to both sides, or to one where the contact point is on
+// the patch's edge) or into the body: the half-disk of paper Eq. (19) at its pole (0, 1),
+// the solid sphere at (1/2, 1, 1/8) turned to the contact direction, or an explicit patch at
+// a point of a boundary face (convex, regular; face_point.h gives its curvature):
 //
 //   level 0   the paper's 400-element model (half-disk: degrees 4 x 3, 16 x 25 spans) or
-//             sphere3d_coarse's (degrees 3 x 3 x 3, 4 x 4 x 16 spans);
+//             sphere3d_coarse's (degrees 3 x 3 x 3, 4 x 4 x 16 spans); an explicit patch at
+//             degree kLevel0Degree with uniform spans (kLevel0MinSpans below);
 //   levels    the fewest halvings that bring every span at the contact point below a / N,
 //             N = elements per contact radius (default 12 axisymmetric, 2 solid);
 //   boxes     box l (l = 1 .. L) reaches kRegionRadii a along the surface and
@@ -62,6 +64,14 @@ constexpr double kFinestDepthRadii = 0.5;  // finest box depth: 0.5 a (Hertz's v
                                            // maximum lies at 0.48 a)
 constexpr int kLayerCells = 2;             // cells of the coarser level around each box
 constexpr double kStressLineRadii = 3.5;   // the axis line's depth, in a
+// Level 0 of an explicit patch: its degree raised to 3 where lower (as sphere3d_coarse),
+// uniform spans, at least 8 across the shortest of its iso-curves through the contact point
+// and of about that length along the others, on a grid holding the patch's own knots.
+constexpr int kLevel0Degree = 3;
+constexpr int kLevel0MinSpans = 8;
+// A contact point designed from an impact must be spherical (principal curvatures within
+// 1 %: Hertz's ellipse then has axes within 0.7 % of each other, Johnson (1985) Sect. 4.2).
+constexpr double kSphericalTolerance = 0.01;
 
 // The body file's `design` block as read.
 struct DesignRequest {
@@ -87,7 +97,13 @@ struct ImpactDesign {
   // The model.
   RefinementConfig refinement;
   HierarchyOptions hierarchy;
-  // The contact region on face eta_max: one [lo, hi] per direction along it ([xi], or
+  // Where: the contact point's face (eta_max for the built-in geometries), the point and
+  // its outward normal (geometry coordinates), the surface's radius of curvature there (m).
+  int face_direction = 1;
+  bool face_upper = true;
+  Eigen::VectorXd contact_point, contact_normal;
+  double surface_radius = 0.0;
+  // The contact region on that face: one [lo, hi] per direction along it ([xi], or
   // [xi], [zeta]).
   std::vector<std::array<double, 2>> region;
   double finest_arc = 0.0;    // largest finest span at the contact point along the surface, m
@@ -100,12 +116,26 @@ struct ImpactDesign {
 
 // The design for a sphere of radius r, material `material` and mass m against the
 // request's partner: the half-disk (axisymmetric, contact at its pole) and the solid sphere
-// (contact at (1/2, 1, 1/8), rotated to +z: geometry_builders.h). Throws
-// std::invalid_argument for what no rule can design (a contact radius beyond the face).
+// (contact at (1/2, 1, 1/8), which the geometry puts on `direction` from the centre:
+// geometry_builders.h). Throws std::invalid_argument for what no rule can design (a
+// contact radius beyond the face).
 ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material, double mass,
                                   const DesignRequest& request);
 ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material, double mass,
-                                const DesignRequest& request);
+                                const DesignRequest& request,
+                                const Eigen::Vector3d& direction = Eigen::Vector3d::UnitZ());
+
+// The design for an explicit patch (a 2D axisymmetric section or a 3D solid, knot vectors
+// on [0, 1]) at the point `parameters` (one knot coordinate per direction along the face,
+// in direction order) of its boundary face {xi[face_direction] = 0 or 1}: level 0 by the
+// rule above, the chart from the patch's iso-curves (contact_chart.h), Hertz's impact with
+// the surface's radius of curvature there and the mass density x volume. Throws
+// std::invalid_argument for a point off the face, degenerate, off the axis (axisymmetric),
+// on the face's edge (solid), on a C0 knot line, not convex, or elliptical (from an impact).
+ImpactDesign designPatchImpact(const NurbsPatch& patch, bool axisymmetric,
+                               const IsotropicMaterial& material, int face_direction,
+                               bool face_upper, const std::vector<double>& parameters,
+                               const DesignRequest& request);
 
 // The mass of the full sphere of radius r, kg.
 double sphereMass(double radius, double density);

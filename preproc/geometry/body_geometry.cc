@@ -75,7 +75,7 @@ NurbsPatch exactPatch(const GeometryConfig& g) {
     case GeometryKind::kHalfDisk:
       return halfDisk(g.radius);
     case GeometryKind::kSphere:
-      return solidSphere(g.radius);
+      return solidSphere(g.radius, g.contact_direction);
     case GeometryKind::kRod:
       return solidRod(g.radius, g.length);
     case GeometryKind::kNurbs:

@@ -29,6 +29,9 @@ struct GeometryConfig {
   double radius = 0.0;  // m: half_disk, sphere, rod (0 otherwise)
   double length = 0.0;  // m: rod (0 otherwise)
   NurbsPatch patch;     // kNurbs: the patch as given
+  // kSphere: the direction from the centre on which its contact point (1/2, 1, 1/8) lies
+  // (a designed sphere's design.contact_point.direction; +z otherwise).
+  Eigen::Vector3d contact_direction = Eigen::Vector3d::UnitZ();
   // Parametric and space dimension (2 for the half-disk, 3 for the sphere and the rod).
   int paramDim() const;
 };

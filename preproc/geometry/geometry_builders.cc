@@ -21,10 +21,15 @@ KnotVector circleKnots() {
   return KnotVector({0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1}, 2);
 }
 
-// Rotation taking the unit vector a onto the unit vector b (Rodrigues).
+// Rotation taking the unit vector a onto the unit vector b (Rodrigues); b = -a: the half
+// turn about an axis normal to a.
 Eigen::Matrix3d rotationOnto(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   const Eigen::Vector3d v = a.cross(b);
   const double c = a.dot(b);
+  if (c < -1.0 + 1e-12) {
+    const Eigen::Vector3d axis = a.unitOrthogonal();
+    return 2.0 * axis * axis.transpose() - Eigen::Matrix3d::Identity();
+  }
   Eigen::Matrix3d K;
   K << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
   return Eigen::Matrix3d::Identity() + K + K * K / (1.0 + c);
@@ -56,7 +61,7 @@ NurbsPatch halfDisk(double r) {
   return NurbsPatch({KnotVector({0, 0, 0, 1, 1, 1}, 2), KnotVector({0, 0, 1, 1}, 1)}, P, w);
 }
 
-NurbsPatch solidSphere(double r) {
+NurbsPatch solidSphere(double r, const Eigen::Vector3d& direction) {
   checkPositive(r, "radius");
   const NurbsPatch disk = halfDisk(r);
   Eigen::MatrixXd C;
@@ -75,9 +80,10 @@ NurbsPatch solidSphere(double r) {
     }
   }
   NurbsPatch sphere({disk.knots(0), disk.knots(1), circleKnots()}, P, w);
-  // Rotate the designated contact point onto +z.
+  // Rotate the designated contact point onto the direction.
+  if (!(direction.norm() > 0.0)) throw std::invalid_argument("the sphere's contact direction is zero");
   const Eigen::Vector3d c = sphere.evaluate(kSphereContactXi).x.normalized();
-  const Eigen::Matrix3d R = rotationOnto(c, Eigen::Vector3d::UnitZ());
+  const Eigen::Matrix3d R = rotationOnto(c, direction.normalized());
   Eigen::MatrixXd Q = P * R.transpose();
   return NurbsPatch(sphere.knotVectors(), Q, w);
 }

@@ -15,8 +15,9 @@
 //              zeta = 0 = 1, all with coincident control points. The boundary consists
 //              of the faces eta = 0 and eta = 1. The patch is rotated rigidly so that the
 //              surface point (xi, eta, zeta) = (1/2, 1, 1/8), 45 degrees away from the
-//              axis, from the equator and from the C0 knot lines in zeta, lies at (0, 0, r):
-//              a contact region around +z contains no degenerate point (DESIGN.md).
+//              axis, from the equator and from the C0 knot lines in zeta, lies at r times
+//              the unit `direction` (default +z: (0, 0, r)): a contact region around it
+//              contains no degenerate point (DESIGN.md).
 //
 // solidRod(a, L) a straight circular cylinder of radius a along z from 0 to L: the disk
 //              as one 3 x 3 quadratic patch whose four edges are 90-degree rational arcs
@@ -29,7 +30,7 @@
 namespace ffriga {
 
 NurbsPatch halfDisk(double r);
-NurbsPatch solidSphere(double r);
+NurbsPatch solidSphere(double r, const Eigen::Vector3d& direction = Eigen::Vector3d::UnitZ());
 NurbsPatch solidRod(double radius, double length);
 
 // Parametric coordinates of the designated contact point of solidSphere (on face eta = 1).

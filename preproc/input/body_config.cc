@@ -329,7 +329,7 @@ void checkModel(const YamlDocument& doc, const BodyConfig& c) {
 
 // Reads the request of a `design` block: the impact (partner and speed) or the contact
 // radius, and the accuracy level (default by model, impact_design.h).
-DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node, bool halfDisk) {
+DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node, bool section) {
   const YAML::Node impact = node["impact"];
   if (bool(impact) == bool(node["contact_radius"])) {
     throw inputError(doc, node, "design",
@@ -341,7 +341,7 @@ DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node,
       node["elements_per_contact_radius"]
           ? getDouble(doc, node["elements_per_contact_radius"],
                       "design.elements_per_contact_radius")
-          : (halfDisk ? kDefaultElementsPerContactRadius : kDefaultElementsPerContactRadiusSolid);
+          : (section ? kDefaultElementsPerContactRadius : kDefaultElementsPerContactRadiusSolid);
   q.from_impact = bool(impact);
   if (!q.from_impact) {
     q.contact_radius = getDouble(doc, node["contact_radius"], "design.contact_radius");
@@ -366,9 +366,66 @@ DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node,
   return q;
 }
 
+// The contact point of an explicit patch: design.contact_point.face and .parameters (one
+// knot coordinate per direction along the face).
+ImpactDesign readPatchDesign(const YamlDocument& doc, const YAML::Node& point,
+                             const BodyConfig& c, const DesignRequest& q) {
+  const std::string key = "design.contact_point";
+  if (!point || !point["face"] || !point["parameters"] || point["direction"]) {
+    throw inputError(doc, point ? point : doc.root["design"], point ? key : "design",
+                     "an explicit NURBS patch's contact point is a 'face' and its "
+                     "'parameters' (knot coordinates along the face)");
+  }
+  const int d = c.geometry.paramDim();
+  int direction = 0;
+  bool upper = false;
+  parseFaceName(getString(doc, point["face"], key + ".face"), &direction, &upper);
+  if (direction >= d)
+    throw inputError(doc, point["face"], key + ".face", Str() << "the patch has " << d << " directions");
+  const YAML::Node p = point["parameters"];
+  if (static_cast<int>(p.size()) != d - 1) {
+    throw inputError(doc, p, key + ".parameters",
+                     Str() << "expected " << d - 1 << " knot coordinate(s) along the face, found "
+                           << p.size());
+  }
+  std::vector<double> parameters;
+  for (int a = 0; a < d - 1; ++a) parameters.push_back(getDouble(doc, p[a], key + ".parameters"));
+  return designPatchImpact(c.geometry.patch, c.model == ModelKind::kAxisymmetric, c.material,
+                           direction, upper, parameters, q);
+}
+
+// The contact point of a built-in sphere: design.contact_point.direction from the centre
+// (the half-disk: its pole, +y, the only point of an axisymmetric impact).
+Eigen::Vector3d readContactDirection(const YamlDocument& doc, const YAML::Node& point,
+                                     bool halfDisk) {
+  const std::string key = "design.contact_point";
+  if (point["face"] || point["parameters"] || !point["direction"]) {
+    throw inputError(doc, point, key,
+                     "a built-in geometry's contact point is a 'direction' from its centre; "
+                     "'face' and 'parameters' are for explicit NURBS patches");
+  }
+  const YAML::Node dir = point["direction"];
+  const int dims = halfDisk ? 2 : 3;
+  if (static_cast<int>(dir.size()) != dims) {
+    throw inputError(doc, dir, key + ".direction",
+                     Str() << "expected " << dims << " components, found " << dir.size());
+  }
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int a = 0; a < dims; ++a) v(a) = getDouble(doc, dir[a], key + ".direction");
+  if (!(v.norm() > 0.0))
+    throw inputError(doc, dir, key + ".direction", "the direction is zero: it points at no point of the surface");
+  if (halfDisk && !(v(0) == 0.0 && v(1) > 0.0)) {
+    throw inputError(doc, dir, key + ".direction",
+                     "an axisymmetric impact happens on the axis: the half-disk's contact point "
+                     "is its pole, direction [0, 1] (turn the body in the scene for another)");
+  }
+  return v.normalized();
+}
+
 // Reads `design` (preproc/design/impact_design.h) and derives the model from it: the
-// refinement, the hierarchy and the contact region, which the file must then not give.
-std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig& c) {
+// refinement, the hierarchy and the contact region, which the file must then not give. A
+// sphere's contact direction turns its geometry (c.geometry.contact_direction).
+std::optional<ImpactDesign> readDesign(const YamlDocument& doc, BodyConfig& c) {
   const YAML::Node node = doc.root["design"];
   if (!node) return std::nullopt;
   for (const char* key : {"refinement", "hierarchy", "contact", "contacts"}) {
@@ -378,20 +435,25 @@ std::optional<ImpactDesign> readDesign(const YamlDocument& doc, const BodyConfig
                              << "'; give either the design or the hand-made model, not both");
     }
   }
-  const bool halfDisk = c.geometry.kind == GeometryKind::kHalfDisk;
-  if (!halfDisk && c.geometry.kind != GeometryKind::kSphere) {
+  const GeometryKind kind = c.geometry.kind;
+  if (kind == GeometryKind::kRod) {
     throw inputError(doc, node, "design",
-                     Str() << "the design rule covers the spheres ('half_disk', 'sphere') so "
-                           << "far; give refinement, hierarchy and contact by hand for '"
-                           << toString(c.geometry.kind) << "'");
+                     "the design rule covers spheres and explicit NURBS patches with a convex "
+                     "contact point; give refinement, hierarchy and contact by hand for 'rod'");
   }
-  const DesignRequest q = readDesignRequest(doc, node, halfDisk);
+  const bool section = c.geometry.paramDim() == 2;
+  const DesignRequest q = readDesignRequest(doc, node, section);
+  const YAML::Node point = node["contact_point"];
   try {
+    if (kind == GeometryKind::kNurbs) return readPatchDesign(doc, point, c, q);
+    const bool halfDisk = kind == GeometryKind::kHalfDisk;
+    if (point) c.geometry.contact_direction = readContactDirection(doc, point, halfDisk);
     const double r = c.geometry.radius, m = sphereMass(r, c.material.density);
     return halfDisk ? designHalfDiskImpact(r, c.material, m, q)
-                    : designSphereImpact(r, c.material, m, q);
+                    : designSphereImpact(r, c.material, m, q, c.geometry.contact_direction);
   } catch (const std::invalid_argument& e) {
-    throw inputError(doc, node, "design", e.what());
+    throw inputError(doc, point ? point : node, point ? "design.contact_point" : "design",
+                     e.what());
   }
 }
 
@@ -403,8 +465,8 @@ void applyDesign(const ImpactDesign& d, BodyConfig& c) {
   ContactConfig contact;
   contact.key = "design";
   contact.designed = true;
-  contact.direction = 1;  // face eta_max: the upper arc
-  contact.upper = true;
+  contact.direction = d.face_direction;
+  contact.upper = d.face_upper;
   contact.bounds = d.region;
   c.contacts = {contact};
 }

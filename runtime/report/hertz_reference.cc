@@ -10,14 +10,21 @@ namespace ffriga {
 
 namespace {
 
-// A sphere's Hertz data from its SID (material and exact geometry, SID format 3). A frozen
-// body (a SID body without elastic coordinates: a rigid NURBS target) is infinitely stiff.
+// A designed explicit patch: its contact point is spherical with the SID's surface radius
+// (preproc/design/impact_design.h; /design/surface_radius).
+bool designedPatch(const FlexibleBodySid& sid) {
+  return sid.geometry.type == "nurbs" && sid.design.present && sid.design.surface_radius > 0.0;
+}
+
+// A sphere's Hertz data from its SID (material and exact geometry, SID format 3), or a
+// designed patch's at its contact point. A frozen body (a SID body without elastic
+// coordinates: a rigid NURBS target) is infinitely stiff.
 std::optional<HertzSphere> sphereOf(const BodyModel& body) {
   const FlexibleBodySid& sid = body.sid();
   const std::string& type = sid.geometry.type;
-  if (type != "half_disk" && type != "sphere") return std::nullopt;
+  if (type != "half_disk" && type != "sphere" && !designedPatch(sid)) return std::nullopt;
   HertzSphere s;
-  s.radius = sid.geometry.radius;
+  s.radius = designedPatch(sid) ? sid.design.surface_radius : sid.geometry.radius;
   s.youngs_modulus = body.nq() > 0 ? sid.material.youngs_modulus
                                    : std::numeric_limits<double>::infinity();
   s.poisson_ratio = sid.material.poisson_ratio;
@@ -40,6 +47,7 @@ HertzSphere rigidPartner(const RigidObstacle& o) {
 // a sphere on it makes an elliptical contact, which the spheres' Hertz solution is not.
 std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
   if (c.obstacle().shape() == RigidObstacle::Shape::kCylinder) return std::nullopt;
+  if (designedPatch(scene.system->body(c.bodyA()).sid())) return std::nullopt;  // no centre
   const auto sa = sphereOf(scene.system->body(c.bodyA()));
   if (!sa) return std::nullopt;
   const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];
@@ -67,6 +75,15 @@ bool jointed(const MultibodySystem& system, int b) {
   return false;
 }
 
+// Whether body b's designed contact point faces along the unit vector n at t = 0 (the
+// central impact Hertz describes); a sphere faces every way.
+bool facesAlong(const Scene& scene, int b, const Eigen::Vector3d& n) {
+  const FlexibleBodySid& sid = scene.system->body(b).sid();
+  if (!designedPatch(sid)) return true;
+  const Eigen::Vector3d normal = scene.initial_rotation[b] * Eigen::Vector3d(sid.design.contact_normal);
+  return normal.dot(n) > 1.0 - 1e-9;
+}
+
 }  // namespace
 
 std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
@@ -85,6 +102,7 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   const Eigen::Vector3d& vb = scene.initial_velocity[c.bodyB()];
   if ((rb - ra).norm() == 0.0) return std::nullopt;
   const Eigen::Vector3d n = (rb - ra).normalized();
+  if (!facesAlong(scene, c.bodyA(), n) || !facesAlong(scene, c.bodyB(), -n)) return std::nullopt;
   HertzReference h;
   h.approach_speed = -(vb - va).dot(n);
   if (!(h.approach_speed > 0.0)) return std::nullopt;

@@ -1,7 +1,8 @@
 // Hertz's prediction (common/mechanics/hertz.h) for a contact pair of a scene whose two bodies are
 // spheres: both SIDs describe a geometry of type half_disk or sphere (radius and material
-// from the SID's /geometry and /material), and the scene gives their initial positions and
-// velocities. The approach speed is the relative velocity along the line of centres at
+// from the SID's /geometry and /material), or a designed explicit patch whose contact point
+// (spherical, /design/surface_radius) faces the partner along the line between the bodies'
+// positions, and the scene gives their initial positions and velocities. The approach speed is the relative velocity along the line of centres at
 // t = 0 (uniform gravity does not change it). A sphere against a rigid obstacle
 // (runtime/contact/rigid_obstacle.h) is Hertz's sphere on a rigid half-space or rigid sphere:
 // the obstacle infinitely stiff and heavy, the approach speed the body's speed along the

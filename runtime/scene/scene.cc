@@ -301,6 +301,7 @@ void SceneBuilder::assembleState() {
   MultibodySystem& sys = *scene_.system;
   for (const InitialPose& pose : poses_) {
     scene_.initial_position.push_back(pose.r);
+    scene_.initial_rotation.push_back(pose.A);
     scene_.initial_velocity.push_back(pose.v);
   }
   assembleInitialState(sys, poses_, axisymmetric_, atol_, scene_.y0, scene_.settings.integrator.atol);

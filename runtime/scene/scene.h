@@ -49,6 +49,7 @@ struct Scene {
   // as given in the scene.
   std::vector<Eigen::Vector3d> initial_position;
   std::vector<Eigen::Vector3d> initial_velocity;
+  std::vector<Eigen::Matrix3d> initial_rotation;  // body to inertial components
   bool static_preload = false;  // the scene asked for it; then `preload` says how it went
   PreloadReport preload;
   // Warnings about the model (runtime/bodies/quasi_static_rule.h), one line each; ffrsim

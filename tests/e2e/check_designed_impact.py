@@ -14,6 +14,9 @@ usage: check_designed_impact.py IGAPREP FFRSIM SOURCE_DIR OUT_DIR
    benchmarks/design_study.py): force peak and duration within 1 % of Hertz (issue 26).
 3. A designed sphere against a rigid plane (partner: plane), Hertz within 1 %.
 4. penalty_factor: auto on hand-made bodies: exit 2, one line naming the key.
+5. An explicit NURBS patch designed at a chosen contact point: the oblate spheroid of
+   configs/bodies/spheroid2d_designed.yaml, pole on pole, against Hertz with the surface's
+   radius of curvature there (A^2 / C = 2 cm), within 1 %.
 """
 import math
 import os
@@ -157,4 +160,18 @@ r = subprocess.run([ffrsim, bad, "--sid-path", out, "-o", os.path.join(out, "bad
 check(r.returncode == 2 and "penalty_factor" in r.stderr and "designed body" in r.stderr
       and r.stderr.count("\n") == 1, f"auto on hand-made bodies: exit {r.returncode}, {r.stderr.strip()}")
 check(not os.path.exists(os.path.join(out, "bad.h5")), "and no result file")
+
+# 5. An explicit NURBS patch (an oblate spheroid) designed at its pole.
+sid = os.path.join(out, "spheroid2d_designed.sid.h5")
+build(os.path.join(bodies, "spheroid2d_designed.yaml"), sid)
+with h5py.File(sid, "r") as s:
+    Rs = s["design/surface_radius"][()]
+    check(abs(Rs / (0.01**2 / 0.005) - 1) < 1e-9, f"/design/surface_radius {Rs:.9g} m = A^2 / C")
+    normal = s["design/contact_normal"][()]
+    check(abs(normal[1] - 1) < 1e-12, "/design/contact_normal is +y at the pole")
+    m = s["sid/mass"][()]
+    check(abs(m / (7850 * 4 / 3 * math.pi * 0.01**2 * 0.005) - 1) < 1e-6,
+          f"the spheroid's mass {m:.6g} kg")
+with simulate(os.path.join(scenes, "impact2d_spheroids.yaml"), os.path.join(out, "spheroids.h5")) as r:
+    against_hertz(r, "oblate spheroids 10 x 5 mm (explicit NURBS) pole on pole at 0.05 m/s", 0.01)
 check.exit()
