@@ -181,6 +181,7 @@ void BodyPreprocessor::selectInterface() {
   options_.method = config_.reduction.method;
   options_.frame = config_.reduction.frame;
   options_.normal_modes = config_.reduction.normal_modes;
+  options_.mode_cutoff_hz = config_.reduction.mode_cutoff_hz;
   options_.rigid_modes = rigidBodyModes(space, *dofs_, axi_);
   for (int a = 0; a < space.paramDim(); ++a)
     gauss_face_ = std::max(gauss_face_, space_->basePatch().degree(a) + 2);
@@ -339,6 +340,10 @@ void BodyPreprocessor::sampleVisualisation() {
     sid_.design.approach_speed = d.approach_speed;
     sid_.design.max_pressure = d.max_pressure;
     sid_.design.surface_radius = d.surface_radius;
+    sid_.design.contact_minor_radius = d.contact_minor_radius;
+    sid_.design.hertz_max_force = d.hertz ? d.hertz->max_force : 0.0;
+    sid_.design.hertz_duration = d.hertz ? d.hertz->duration : 0.0;
+    sid_.design.mode_cutoff_hz = d.mode_cutoff_hz;
     sid_.design.contact_point = Eigen::Vector3d::Zero();
     sid_.design.contact_normal = Eigen::Vector3d::Zero();
     sid_.design.contact_point.head(d.contact_point.size()) = d.contact_point;

@@ -85,9 +85,15 @@ HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v, do
                      s->poisson_ratio < 0.5,
                  "sphere E = " << s->youngs_modulus << ", R = " << s->radius);
   }
+  return hertzImpact(hertzStiffness(a, b), 1.0 / (1.0 / a.mass + 1.0 / b.mass), v, preload);
+}
+
+HertzImpact hertzImpact(double stiffness, double effective_mass, double v, double preload) {
+  FFRIGA_CHECK(v > 0.0 && stiffness > 0.0 && effective_mass > 0.0,
+               "speed v = " << v << ", K = " << stiffness << ", m* = " << effective_mass);
   HertzImpact h;
-  h.effective_mass = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
-  h.stiffness = hertzStiffness(a, b);
+  h.effective_mass = effective_mass;
+  h.stiffness = stiffness;
   h.preload = preload;
   if (preload == 0.0) {  // closed form
     h.max_approach = std::pow(5.0 * h.effective_mass * v * v / (4.0 * h.stiffness), 0.4);

@@ -51,6 +51,9 @@ double hertzStiffness(const HertzSphere& a, const HertzSphere& b);
 // Central impact at relative normal speed v > 0 (m/s), pressed together by the steady load
 // P (N, default none; a negative load pulls them apart, e.g. gravity away from a wall).
 HertzImpact hertzImpact(const HertzSphere& a, const HertzSphere& b, double v, double preload = 0.0);
+// The same for any contact law F = K delta^(3/2) (an elliptical contact: hertz_ellipse.h) and
+// effective mass m*.
+HertzImpact hertzImpact(double stiffness, double effective_mass, double v, double preload = 0.0);
 
 // Contact force at times t (s, measured from first touch), by integrating
 // m* delta'' = P - K delta^(3/2) (fourth-order Runge-Kutta, 20,000 steps per contact; the

@@ -98,6 +98,11 @@ struct SidDesign {
   // geometry coordinates (m; unit).
   double surface_radius = 0.0;
   Eigen::VectorXd contact_point, contact_normal;
+  // The ellipse's semi-minor axis b (m; = contact_radius for a circle) and the designed
+  // impact's Hertz force peak (N) and duration (s) (0: a was given). Same vintage.
+  double contact_minor_radius = 0.0;
+  double hertz_max_force = 0.0, hertz_duration = 0.0;
+  double mode_cutoff_hz = 0.0;  // the normal modes' cutoff (Hz); 0: a count was given
 };
 
 struct FlexibleBodySid {

@@ -182,6 +182,10 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
     h5::writeScalar(c, d, "surface_radius", sid.design.surface_radius, "m");
     h5::writeVector(c, d, "contact_point", sid.design.contact_point, "m");
     h5::writeVector(c, d, "contact_normal", sid.design.contact_normal, "1");
+    h5::writeScalar(c, d, "contact_minor_radius", sid.design.contact_minor_radius, "m");
+    h5::writeScalar(c, d, "hertz_max_force", sid.design.hertz_max_force, "N");
+    h5::writeScalar(c, d, "hertz_duration", sid.design.hertz_duration, "s");
+    h5::writeScalar(c, d, "mode_cutoff_hz", sid.design.mode_cutoff_hz, "Hz");
   }
   if (!sid.mesh.empty()) {
     Handle v = h5::createGroup(c, file, "visualisation");
@@ -220,12 +224,21 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
     sid->design.finest_element = finiteScalar(c, d, "/design", "finest_element");
     sid->design.approach_speed = finiteScalar(c, d, "/design", "approach_speed");
     sid->design.max_pressure = finiteScalar(c, d, "/design", "max_pressure");
-    if (h5::exists(d, "surface_radius")) {
-      sid->design.surface_radius = finiteScalar(c, d, "/design", "surface_radius");
-      sid->design.contact_point = finiteVector(c, d, "/design", "contact_point");
-      sid->design.contact_normal = finiteVector(c, d, "/design", "contact_normal");
-      if (sid->design.contact_point.size() != 3 || sid->design.contact_normal.size() != 3)
-        c.fail("/design/contact_point and contact_normal must have 3 components");
+    // Added on 2026-12-07 within version 3: each read where present.
+    const auto optional = [&](const char* name, double fallback) {
+      return h5::exists(d, name) ? finiteScalar(c, d, "/design", name) : fallback;
+    };
+    sid->design.surface_radius = optional("surface_radius", 0.0);
+    sid->design.contact_minor_radius = optional("contact_minor_radius", sid->design.contact_radius);
+    sid->design.hertz_max_force = optional("hertz_max_force", 0.0);
+    sid->design.hertz_duration = optional("hertz_duration", 0.0);
+    sid->design.mode_cutoff_hz = optional("mode_cutoff_hz", 0.0);
+    for (const char* name : {"contact_point", "contact_normal"}) {
+      if (!h5::exists(d, name)) continue;
+      const Eigen::VectorXd v = finiteVector(c, d, "/design", name);
+      if (v.size() != 3) c.fail(Str() << "/design/" << name << " must have 3 components");
+      (std::string(name) == "contact_point" ? sid->design.contact_point
+                                            : sid->design.contact_normal) = v;
     }
   }
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {

@@ -192,11 +192,10 @@ std::vector<ChartDirection> sphereChart(double r) {
   const double ring = r * std::sin(theta0);  // radius of the parallel through the contact
   zeta.metres_per_knot = ring * 4.0 * quarterArcSpeed(0.5);
   zeta.knot = [ring, phi0](double s) { return 0.25 * knotOfQuarterArc(phi0 + s / ring); };
-  zeta.highest = 0.25;  // a C0 knot line of the circle: no box crosses it
+  zeta.highest = 0.25;                         // a C0 knot line of the circle: no box crosses it
   zeta.reach_limit = 0.5 * ring * M_PI / 2.0;  // the seam or that line pi/4 away, each side
   return {xi, eta, zeta};
 }
-
 
 std::vector<ChartDirection> patchChart(const NurbsPatch& patch, const FacePoint& where,
                                        int face_direction, const std::vector<double>& xi,

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "common/base/error.h"
+#include "common/mechanics/hertz_ellipse.h"
 #include "preproc/design/contact_chart.h"
 #include "preproc/geometry/contact_region.h"
 #include "preproc/geometry/geometry_builders.h"
@@ -26,24 +27,59 @@ double floorToGrid(double x, double h) {
   return std::floor(x / h + kGridTolerance) * h;
 }
 
-// Hertz's impact for the request, and its contact patch at the force peak.
-void resolveImpact(double radius, const IsotropicMaterial& material, double mass,
-                   const DesignRequest& request, ImpactDesign* d) {
+// The partner of the request as Hertz sees it (a plane: infinitely stiff, large and heavy).
+HertzSphere partnerOf(const DesignRequest& request, const HertzSphere& self) {
+  const double inf = std::numeric_limits<double>::infinity();
+  if (request.partner == DesignRequest::Partner::kPlane) return HertzSphere{inf, 0.0, inf, inf};
+  if (request.partner == DesignRequest::Partner::kSphere) return request.partner_sphere;
+  return self;
+}
+
+// Hertz's elliptical impact (common/mechanics/hertz_ellipse.h) of a surface with principal
+// curvatures k1 < k2 against the request's partner, principal directions aligned (the same
+// body turned over onto itself): the contact law's stiffness from the ellipse at 1 N, the
+// impact with it, the ellipse at the force peak.
+void resolveEllipticalImpact(double k1, double k2, const HertzSphere& self,
+                             const DesignRequest& request, ImpactDesign* d) {
+  const HertzSphere partner = partnerOf(request, self);
+  const double kp1 = request.partner == DesignRequest::Partner::kSame ? k1 : 1.0 / partner.radius;
+  const double kp2 = request.partner == DesignRequest::Partner::kSame ? k2 : 1.0 / partner.radius;
+  const double A = 0.5 * (k1 + kp1), B = 0.5 * (k2 + kp2);
+  const double Es = effectiveModulus(self, partner);
+  const double m = 1.0 / (1.0 / self.mass + 1.0 / partner.mass);
+  const HertzImpact h =
+      hertzImpact(hertzEllipse(A, B, Es, 1.0).stiffness, m, request.approach_speed);
+  const HertzEllipse peak = hertzEllipse(A, B, Es, h.max_force);
+  d->hertz = h;
+  d->approach_speed = request.approach_speed;
+  d->contact_radius = peak.semi_major;
+  d->contact_minor_radius = peak.semi_minor;
+  d->max_pressure = peak.max_pressure;
+}
+
+// Hertz's impact for the request, and its contact patch at the force peak; `curvatures` of
+// an explicit patch's point (ascending; empty for the built-in spheres of `radius`), an
+// elliptical contact where they differ by more than kSphericalTolerance.
+void resolveImpact(double radius, const std::vector<double>& curvatures,
+                   const IsotropicMaterial& material, double mass, const DesignRequest& request,
+                   ImpactDesign* d) {
   if (!request.from_impact) {
-    d->contact_radius = request.contact_radius;
+    d->contact_radius = d->contact_minor_radius = request.contact_radius;
     return;
   }
   const HertzSphere self{material.youngs_modulus, material.poisson_ratio, radius, mass};
-  const double inf = std::numeric_limits<double>::infinity();
-  HertzSphere partner = self;
-  if (request.partner == DesignRequest::Partner::kPlane) partner = HertzSphere{inf, 0.0, inf, inf};
-  if (request.partner == DesignRequest::Partner::kSphere) partner = request.partner_sphere;
+  if (!curvatures.empty() &&
+      curvatures.back() - curvatures.front() > kSphericalTolerance * curvatures.back()) {
+    resolveEllipticalImpact(curvatures.front(), curvatures.back(), self, request, d);
+    return;
+  }
+  const HertzSphere partner = partnerOf(request, self);
   const HertzImpact h = hertzImpact(self, partner, request.approach_speed);
   // The patch at the force peak: a = (3 F R* / (4 E*))^(1/3) = sqrt(R* delta_max).
   const HertzContactPatch patch = hertzContactPatch(self, partner, h.max_force);
   d->hertz = h;
   d->approach_speed = request.approach_speed;
-  d->contact_radius = patch.radius;
+  d->contact_radius = d->contact_minor_radius = patch.radius;
   d->max_pressure = patch.max_pressure;
 }
 
@@ -136,8 +172,14 @@ void explain(const DesignRequest& q, const std::string& level0, ImpactDesign* d)
                         << partnerName(q.partner) << "; Hertz: force peak " << h.max_force
                         << " N, approach " << h.max_approach << " m, duration " << h.duration
                         << " s");
-    out.push_back(Str() << "contact radius a = sqrt(R* delta) = " << d->contact_radius
-                        << " m, peak pressure p0 = " << d->max_pressure << " Pa");
+    if (d->contact_minor_radius < d->contact_radius) {
+      out.push_back(Str() << "elliptical contact (principal curvatures differ): semi-axes a = "
+                          << d->contact_radius << " m, b = " << d->contact_minor_radius
+                          << " m, peak pressure p0 = " << d->max_pressure << " Pa");
+    } else {
+      out.push_back(Str() << "contact radius a = sqrt(R* delta) = " << d->contact_radius
+                          << " m, peak pressure p0 = " << d->max_pressure << " Pa");
+    }
   } else {
     out.push_back(Str() << "contact radius a = " << d->contact_radius << " m (given)");
   }
@@ -145,8 +187,10 @@ void explain(const DesignRequest& q, const std::string& level0, ImpactDesign* d)
   out.push_back(Str() << "levels: " << d->hierarchy.levels << " (" << d->hierarchy.levels - 1
                       << " halvings bring the finest spans at the contact point to "
                       << d->finest_arc << " m along the surface and " << d->finest_depth
-                      << " m deep, below a / " << d->elements_per_contact_radius << " = "
-                      << d->contact_radius / d->elements_per_contact_radius << " m)");
+                      << " m deep, below "
+                      << (d->contact_minor_radius < d->contact_radius ? "b" : "a") << " / "
+                      << d->elements_per_contact_radius << " = "
+                      << d->contact_minor_radius / d->elements_per_contact_radius << " m)");
   out.push_back(Str() << "boxes: " << kRegionRadii << " a along the surface and "
                       << kFinestDepthRadii << " a deep, plus " << kLayerCells
                       << " cells of the next coarser level, per level");
@@ -163,17 +207,18 @@ void explain(const DesignRequest& q, const std::string& level0, ImpactDesign* d)
 // The design on a chart: levels, boxes, region, the stress line from the contact point
 // inwards along the normal, at most `thickness` deep (the body's extent there).
 ImpactDesign designOnChart(const std::vector<ChartDirection>& chart, double radius,
-                           const IsotropicMaterial& material, double mass,
-                           const DesignRequest& request, const Eigen::VectorXd& surface,
-                           const Eigen::VectorXd& outward, double thickness) {
+                           const std::vector<double>& curvatures, const IsotropicMaterial& material,
+                           double mass, const DesignRequest& request,
+                           const Eigen::VectorXd& surface, const Eigen::VectorXd& outward,
+                           double thickness) {
   ImpactDesign d;
-  resolveImpact(radius, material, mass, request, &d);
+  resolveImpact(radius, curvatures, material, mass, request, &d);
   const double a = d.contact_radius;
   d.elements_per_contact_radius = request.elements_per_contact_radius;
   d.surface_radius = radius;
   d.contact_point = surface;
   d.contact_normal = outward;
-  designHierarchy(chart, a, request.elements_per_contact_radius, &d);
+  designHierarchy(chart, d.contact_minor_radius, request.elements_per_contact_radius, &d);
   designRegion(chart, a, &d);
   const double depth = std::min(kStressLineRadii * a, thickness);
   d.stress_from = surface;
@@ -251,32 +296,35 @@ void checkContactPoint(const FacePoint& f, const std::vector<double>& xi, int fa
     }
     const Eigen::VectorXd t = f.tangents[0].normalized();
     if (std::abs(t(1)) > 1e-6) {
-      throw std::invalid_argument(Str() << "the surface is not smooth on the axis (its meridian "
-                                        << "meets the axis at " << std::acos(std::abs(t(1))) * 180 / M_PI
-                                        << " degrees, not 90): a tip, no Hertz contact");
+      throw std::invalid_argument(Str()
+                                  << "the surface is not smooth on the axis (its meridian "
+                                  << "meets the axis at " << std::acos(std::abs(t(1))) * 180 / M_PI
+                                  << " degrees, not 90): a tip, no Hertz contact");
     }
   } else {
     for (std::size_t a = 0; a < xi.size(); ++a) {
       if (static_cast<int>(a) != face_direction && (xi[a] <= 0.0 || xi[a] >= 1.0))
-        throw std::invalid_argument(Str() << "the contact point of a solid must lie inside its "
-                                          << "face; direction " << a << " is on the edge "
-                                          << xi[a]);
+        throw std::invalid_argument(Str()
+                                    << "the contact point of a solid must lie inside its "
+                                    << "face; direction " << a << " is on the edge " << xi[a]);
     }
   }
   // (+ 0.0: a flat face prints 0, not -0)
   const double k1 = f.curvatures.front() + 0.0, k2 = f.curvatures.back() + 0.0;
   if (!(k1 > 0.0)) {
-    const std::string both =
-        f.curvatures.size() > 1 ? std::string(Str() << "s " << k1 << " and " << k2) : Str() << " " << k1;
+    const std::string both = f.curvatures.size() > 1
+                                 ? std::string(Str() << "s " << k1 << " and " << k2)
+                                 : Str() << " " << k1;
     throw std::invalid_argument(Str() << "the contact point is not convex (principal curvature"
                                       << both << " 1/m; concave < 0, flat 0): Hertz's contact "
                                       << "needs a convex point");
   }
-  if (from_impact && k2 - k1 > kSphericalTolerance * k2) {
-    throw std::invalid_argument(Str() << "the principal radii of curvature " << 1.0 / k2
-                                      << " and " << 1.0 / k1 << " m differ: an elliptical Hertz "
-                                      << "contact, not designed from the impact yet; give "
-                                      << "design.contact_radius (the ellipse's larger semi-axis)");
+  if (from_impact && k2 / k1 > kMaxCurvatureRatio) {
+    throw std::invalid_argument(Str() << "the principal radii of curvature " << 1.0 / k2 << " and "
+                                      << 1.0 / k1 << " m differ by more than a factor "
+                                      << kMaxCurvatureRatio << ": a contact line rather than a "
+                                      << "Hertz ellipse; give design.contact_radius (the "
+                                      << "ellipse's larger semi-axis)");
   }
 }
 
@@ -288,7 +336,7 @@ double sphereMass(double radius, double density) {
 
 ImpactDesign designHalfDiskImpact(double radius, const IsotropicMaterial& material, double mass,
                                   const DesignRequest& request) {
-  ImpactDesign d = designOnChart(halfDiskChart(radius), radius, material, mass, request,
+  ImpactDesign d = designOnChart(halfDiskChart(radius), radius, {}, material, mass, request,
                                  Eigen::Vector2d(0.0, radius), Eigen::Vector2d(0.0, 1.0), radius);
   d.refinement.elevate_degree = {2, 2};
   d.refinement.insert_knots = {15, 24};
@@ -305,8 +353,7 @@ ImpactDesign designSphereImpact(double radius, const IsotropicMaterial& material
                                 const DesignRequest& request, const Eigen::Vector3d& direction) {
   const std::vector<ChartDirection> chart = sphereChart(radius);
   const Eigen::Vector3d n = direction.normalized();
-  ImpactDesign d =
-      designOnChart(chart, radius, material, mass, request, radius * n, n, radius);
+  ImpactDesign d = designOnChart(chart, radius, {}, material, mass, request, radius * n, n, radius);
   d.refinement.elevate_degree = {1, 2, 1};
   d.refinement.insert_knots = {3, 3, 3};
   d.refinement.insert = {{}, {}, {}};
@@ -335,10 +382,12 @@ ImpactDesign designPatchImpact(const NurbsPatch& patch, bool axisymmetric,
   double mean = 0.0;
   for (double k : f.curvatures) mean += k / f.curvatures.size();
   const double mass = material.density * patchVolume(patch, axisymmetric);
-  ImpactDesign d = designOnChart(chart, 1.0 / mean, material, mass, request, f.x, f.normal,
-                                 chart[face_direction].reach_limit);
+  ImpactDesign d = designOnChart(chart, 1.0 / mean, f.curvatures, material, mass, request, f.x,
+                                 f.normal, chart[face_direction].reach_limit);
   d.face_direction = face_direction;
   d.face_upper = face_upper;
+  if (f.curvatures.back() - f.curvatures.front() > kSphericalTolerance * f.curvatures.back())
+    d.surface_radius = 0.0;  // not a sphere's point
   d.refinement = level0;
   std::string spans;
   for (int a = 0; a < patch.paramDim(); ++a) {

@@ -18,13 +18,13 @@
 namespace ffriga {
 
 struct FacePoint {
-  Eigen::VectorXd x;                 // position, m
-  Eigen::VectorXd normal;            // outward unit normal
-  std::vector<double> curvatures;    // principal curvatures, 1/m, ascending (convex > 0)
+  Eigen::VectorXd x;                      // position, m
+  Eigen::VectorXd normal;                 // outward unit normal
+  std::vector<double> curvatures;         // principal curvatures, 1/m, ascending (convex > 0)
   std::vector<Eigen::VectorXd> tangents;  // dx/du_a along the face, m per knot, direction order
-  double jacobian = 0.0;             // |x_u| (2D) or |x_u x x_w| (3D): 0 at a degenerate point
-  double size = 0.0;                 // the patch's bounding-box diagonal, m (the scale of
-                                     // "degenerate": jacobian <= 1e-9 size^(d-1))
+  double jacobian = 0.0;                  // |x_u| (2D) or |x_u x x_w| (3D): 0 at a degenerate point
+  double size = 0.0;                      // the patch's bounding-box diagonal, m (the scale of
+                                          // "degenerate": jacobian <= 1e-9 size^(d-1))
   bool degenerate() const;
 };
 

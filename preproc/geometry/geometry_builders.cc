@@ -81,7 +81,8 @@ NurbsPatch solidSphere(double r, const Eigen::Vector3d& direction) {
   }
   NurbsPatch sphere({disk.knots(0), disk.knots(1), circleKnots()}, P, w);
   // Rotate the designated contact point onto the direction.
-  if (!(direction.norm() > 0.0)) throw std::invalid_argument("the sphere's contact direction is zero");
+  if (!(direction.norm() > 0.0))
+    throw std::invalid_argument("the sphere's contact direction is zero");
   const Eigen::Vector3d c = sphere.evaluate(kSphereContactXi).x.normalized();
   const Eigen::Matrix3d R = rotationOnto(c, direction.normalized());
   Eigen::MatrixXd Q = P * R.transpose();

@@ -368,8 +368,8 @@ DesignRequest readDesignRequest(const YamlDocument& doc, const YAML::Node& node,
 
 // The contact point of an explicit patch: design.contact_point.face and .parameters (one
 // knot coordinate per direction along the face).
-ImpactDesign readPatchDesign(const YamlDocument& doc, const YAML::Node& point,
-                             const BodyConfig& c, const DesignRequest& q) {
+ImpactDesign readPatchDesign(const YamlDocument& doc, const YAML::Node& point, const BodyConfig& c,
+                             const DesignRequest& q) {
   const std::string key = "design.contact_point";
   if (!point || !point["face"] || !point["parameters"] || point["direction"]) {
     throw inputError(doc, point ? point : doc.root["design"], point ? key : "design",
@@ -381,12 +381,13 @@ ImpactDesign readPatchDesign(const YamlDocument& doc, const YAML::Node& point,
   bool upper = false;
   parseFaceName(getString(doc, point["face"], key + ".face"), &direction, &upper);
   if (direction >= d)
-    throw inputError(doc, point["face"], key + ".face", Str() << "the patch has " << d << " directions");
+    throw inputError(doc, point["face"], key + ".face",
+                     Str() << "the patch has " << d << " directions");
   const YAML::Node p = point["parameters"];
   if (static_cast<int>(p.size()) != d - 1) {
-    throw inputError(doc, p, key + ".parameters",
-                     Str() << "expected " << d - 1 << " knot coordinate(s) along the face, found "
-                           << p.size());
+    throw inputError(
+        doc, p, key + ".parameters",
+        Str() << "expected " << d - 1 << " knot coordinate(s) along the face, found " << p.size());
   }
   std::vector<double> parameters;
   for (int a = 0; a < d - 1; ++a) parameters.push_back(getDouble(doc, p[a], key + ".parameters"));
@@ -413,7 +414,8 @@ Eigen::Vector3d readContactDirection(const YamlDocument& doc, const YAML::Node& 
   Eigen::Vector3d v = Eigen::Vector3d::Zero();
   for (int a = 0; a < dims; ++a) v(a) = getDouble(doc, dir[a], key + ".direction");
   if (!(v.norm() > 0.0))
-    throw inputError(doc, dir, key + ".direction", "the direction is zero: it points at no point of the surface");
+    throw inputError(doc, dir, key + ".direction",
+                     "the direction is zero: it points at no point of the surface");
   if (halfDisk && !(v(0) == 0.0 && v(1) > 0.0)) {
     throw inputError(doc, dir, key + ".direction",
                      "an axisymmetric impact happens on the axis: the half-disk's contact point "
@@ -483,16 +485,29 @@ void addDesignedStressLine(const ImpactDesign& d, VisualisationConfig& v) {
   v.stress_lines.push_back(line);
 }
 
-// What a designed body gets where its file is silent: the stress line 'axis' and, for a
-// solid, kDefaultNormalModesSolid normal modes (impact_design.h).
+// What a designed body gets where its file is silent: the stress line 'axis' and the
+// normal modes (impact_design.h): from an impact, every fixed-interface mode below
+// kModeCutoffPeriods / T; from a contact radius, kDefaultNormalModesSolid for a solid (the
+// schema's 10 for a section).
 void addDesignedDefaults(const YamlDocument& doc, BodyConfig& c) {
   addDesignedStressLine(*c.design, c.visualisation);
   const YAML::Node& root = doc.root;  // const: looking up creates no entries
   const bool modesGiven = root["reduction"] && isGiven(doc, root["reduction"]["normal_modes"]);
-  if (c.model != ModelKind::kSolid || modesGiven) return;
-  c.reduction.normal_modes = kDefaultNormalModesSolid;
-  c.design->reasons.push_back(Str() << "normal modes: " << kDefaultNormalModesSolid
-                                    << " (a 3D sphere has many below the quasi-static cutoff)");
+  if (modesGiven || c.reduction.method != ReductionMethod::kCraigBampton) return;
+  const bool solid = c.model == ModelKind::kSolid;
+  if (solid) c.reduction.normal_modes = kDefaultNormalModesSolid;  // the first guess
+  if (c.design->hertz) {
+    c.reduction.mode_cutoff_hz = kModeCutoffPeriods / c.design->hertz->duration;
+    c.design->mode_cutoff_hz = c.reduction.mode_cutoff_hz;
+    c.design->reasons.push_back(Str() << "normal modes: every fixed-interface mode below "
+                                      << kModeCutoffPeriods << " / T = "
+                                      << c.reduction.mode_cutoff_hz
+                                      << " Hz (faster ones respond quasi-statically: the "
+                                      << "constraint modes carry them)");
+  } else if (solid) {
+    c.design->reasons.push_back(Str() << "normal modes: " << kDefaultNormalModesSolid
+                                      << " (a 3D solid has many below the quasi-static cutoff)");
+  }
 }
 
 }  // namespace

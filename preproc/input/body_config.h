@@ -71,6 +71,9 @@ struct ReductionConfig {
   // body file without a `reduction` block.
   ReductionMethod method = ReductionMethod::kCraigBampton;  // craig_bampton | modal
   int normal_modes = 10;
+  // A designed body without reduction.normal_modes (impact_design.h): every fixed-interface
+  // mode below this frequency, Hz (normal_modes the first guess); 0: normal_modes as given.
+  double mode_cutoff_hz = 0.0;
   FrameKind frame = FrameKind::kBuckens;  // buckens | tangent
   std::string frame_marker;               // tangent frame only
   std::vector<DampingBand> damping;

@@ -239,6 +239,28 @@ Basis assembleBasis(const Partition& p, const EigenResult& modes, const Eigen::M
   return basis;
 }
 
+// The fixed-interface modes below the cutoff f_c (options.mode_cutoff_hz): solved again for
+// twice as many until the highest lies above f_c (or none are left), then cut to those
+// below it. Returns how many remain.
+int modesBelowCutoff(const SparseCholesky& chol, const SparseMatrix& Mii, double cutoff_hz,
+                     EigenResult* modes) {
+  const int ni = static_cast<int>(Mii.rows());
+  const double cutoff = std::pow(2.0 * M_PI * cutoff_hz, 2);  // (rad/s)^2
+  while (modes->values.size() > 0 && modes->values(modes->values.size() - 1) < cutoff &&
+         modes->values.size() < ni - 1) {
+    EigenOptions eo;
+    eo.count = std::min(2 * static_cast<int>(modes->values.size()), ni - 1);
+    eo.shift = 0.0;
+    eo.what = "fixed-interface normal modes";
+    *modes = solveEigenproblem(chol, Mii, eo);
+  }
+  int keep = 0;
+  while (keep < modes->values.size() && modes->values(keep) < cutoff) ++keep;
+  modes->values.conservativeResize(keep);
+  modes->vectors.conservativeResize(Eigen::NoChange, keep);
+  return keep;
+}
+
 Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o,
                         ReducedModel* out) {
   const int n = static_cast<int>(K.rows());
@@ -257,11 +279,14 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
   Eigen::MatrixXd X;  // constraint modes -K_ii^{-1} K_ib
   solveModesSideBySide(chol, Mii, Kib, o.normal_modes, &modes, &X, out);
   timer.step("fixed-interface and constraint modes (wall)");
+  const int nm =
+      o.mode_cutoff_hz > 0.0 ? modesBelowCutoff(chol, Mii, o.mode_cutoff_hz, &modes) : o.normal_modes;
+  if (o.mode_cutoff_hz > 0.0) timer.step("fixed-interface modes below the cutoff");
   out->arpack_iterations = modes.iterations;
   out->normal_mode_omega2 = modes.values;
-  out->normal_modes = o.normal_modes;
+  out->normal_modes = nm;
   out->constraint_modes = static_cast<int>(p.boundary.size());
-  return assembleBasis(p, modes, X, Kib, Kbb, n, o.normal_modes);
+  return assembleBasis(p, modes, X, Kib, Kbb, n, nm);
 }
 
 Basis modalBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o,

@@ -35,6 +35,10 @@ struct ReductionOptions {
   ReductionMethod method = ReductionMethod::kCraigBampton;
   FrameKind frame = FrameKind::kBuckens;
   int normal_modes = 0;              // fixed-interface (CB) or free-free (modal) modes
+  // Craig-Bampton only, > 0: keep every fixed-interface mode below this frequency (Hz)
+  // instead of a count; normal_modes is then the first guess of how many to solve for
+  // (doubled until the highest lies above the cutoff).
+  double mode_cutoff_hz = 0.0;
   std::vector<bool> interface;       // per DOF: on the Craig-Bampton interface
   Eigen::MatrixXd rigid_modes;       // ndof x nr, the rigid-body fields
   Eigen::MatrixXd frame_conditions;  // nr x ndof, C for the tangent frame

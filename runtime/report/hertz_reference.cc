@@ -80,7 +80,8 @@ bool jointed(const MultibodySystem& system, int b) {
 bool facesAlong(const Scene& scene, int b, const Eigen::Vector3d& n) {
   const FlexibleBodySid& sid = scene.system->body(b).sid();
   if (!designedPatch(sid)) return true;
-  const Eigen::Vector3d normal = scene.initial_rotation[b] * Eigen::Vector3d(sid.design.contact_normal);
+  const Eigen::Vector3d normal =
+      scene.initial_rotation[b] * Eigen::Vector3d(sid.design.contact_normal);
   return normal.dot(n) > 1.0 - 1e-9;
 }
 

@@ -2,12 +2,12 @@
 // spheres: both SIDs describe a geometry of type half_disk or sphere (radius and material
 // from the SID's /geometry and /material), or a designed explicit patch whose contact point
 // (spherical, /design/surface_radius) faces the partner along the line between the bodies'
-// positions, and the scene gives their initial positions and velocities. The approach speed is the relative velocity along the line of centres at
-// t = 0 (uniform gravity does not change it). A sphere against a rigid obstacle
-// (runtime/contact/rigid_obstacle.h) is Hertz's sphere on a rigid half-space or rigid sphere:
-// the obstacle infinitely stiff and heavy, the approach speed the body's speed along the
-// obstacle's normal when it first touches, under gravity alone, and the body's weight along
-// the normal a steady load during the contact. Used by ffrsim to print the
+// positions, and the scene gives their initial positions and velocities. The approach speed is the
+// relative velocity along the line of centres at t = 0 (uniform gravity does not change it). A
+// sphere against a rigid obstacle (runtime/contact/rigid_obstacle.h) is Hertz's sphere on a rigid
+// half-space or rigid sphere: the obstacle infinitely stiff and heavy, the approach speed the
+// body's speed along the obstacle's normal when it first touches, under gravity alone, and the
+// body's weight along the normal a steady load during the contact. Used by ffrsim to print the
 // maximum force and contact duration next to Hertz.
 #pragma once
 

@@ -172,6 +172,15 @@ with h5py.File(sid, "r") as s:
     m = s["sid/mass"][()]
     check(abs(m / (7850 * 4 / 3 * math.pi * 0.01**2 * 0.005) - 1) < 1e-6,
           f"the spheroid's mass {m:.6g} kg")
+    # No reduction.normal_modes in the file: every fixed-interface mode below 25 / T.
+    T_design, cutoff = s["design/hertz_duration"][()], s["design/mode_cutoff_hz"][()]
+    check(abs(cutoff * T_design / 25 - 1) < 1e-12 and s.attrs["normal_modes"] >= 1,
+          f"normal modes: {s.attrs['normal_modes']} below 25 / T = {cutoff:.4g} Hz")
+    F_design = s["design/hertz_max_force"][()]
 with simulate(os.path.join(scenes, "impact2d_spheroids.yaml"), os.path.join(out, "spheroids.h5")) as r:
     against_hertz(r, "oblate spheroids 10 x 5 mm (explicit NURBS) pole on pole at 0.05 m/s", 0.01)
+    # The design's mass is density x quadrature volume, ffrsim's the SID's (from M): the
+    # same to ~1e-11.
+    check(abs(r.attrs["hertz_max_force_N"] / F_design - 1) < 1e-9,
+          "ffrsim's Hertz reference is the design's (/design/hertz_max_force)")
 check.exit()

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/mechanics/hertz_ellipse.h"
 #include "preproc/design/contact_chart.h"
 #include "preproc/design/impact_design.h"
 #include "preproc/geometry/face_point.h"
@@ -62,8 +63,8 @@ TEST_CASE("face point: normal and principal curvatures", "[design]") {
   CHECK(sp.curvatures[0] == Approx(0.005 / 1e-4).epsilon(1e-12));
   // The solid sphere anywhere regular: both principal curvatures 1 / r, normal radial.
   const NurbsPatch ball = solidSphere(kR);
-  for (const std::vector<double>& xi : {std::vector<double>{0.5, 1.0, 0.125},
-                                        std::vector<double>{0.3, 1.0, 0.6}}) {
+  for (const std::vector<double>& xi :
+       {std::vector<double>{0.5, 1.0, 0.125}, std::vector<double>{0.3, 1.0, 0.6}}) {
     const FacePoint f = facePoint(ball, 1, true, xi);
     REQUIRE(f.curvatures.size() == 2);
     CHECK(f.curvatures[0] == Approx(1.0 / kR).epsilon(1e-10));
@@ -90,8 +91,7 @@ TEST_CASE("patch volume: sphere, spheroid, box", "[design]") {
         Approx(2.0 * M_PI * (h * w * w / 2 + k * w * w * w * w / 4)).epsilon(1e-12));
 }
 
-TEST_CASE("patch chart: the half-disk as an explicit patch against the exact chart",
-          "[design]") {
+TEST_CASE("patch chart: the half-disk as an explicit patch against the exact chart", "[design]") {
   const NurbsPatch disk = halfDisk(kR);
   const std::vector<double> xi{0.0, 1.0};
   const FacePoint f = facePoint(disk, 1, true, xi);
@@ -121,9 +121,8 @@ TEST_CASE("patch chart: the half-disk as an explicit patch against the exact cha
 TEST_CASE("designed explicit patch: the half-disk given as NURBS, a spheroid", "[design]") {
   const NurbsPatch disk = halfDisk(kR);
   const ImpactDesign d = designPatchImpact(disk, true, kSteel, 1, true, {0.0}, impactAt(0.2));
-  const ImpactDesign built =
-      designHalfDiskImpact(kR, kSteel, 4.0 / 3.0 * M_PI * kR * kR * kR * kSteel.density,
-                           impactAt(0.2));
+  const ImpactDesign built = designHalfDiskImpact(
+      kR, kSteel, 4.0 / 3.0 * M_PI * kR * kR * kR * kSteel.density, impactAt(0.2));
   // The same impact: Hertz's contact radius from the curvature and the quadrature mass.
   CHECK(d.contact_radius == Approx(built.contact_radius).epsilon(1e-8));
   CHECK(d.surface_radius == Approx(kR).epsilon(1e-12));
@@ -140,8 +139,8 @@ TEST_CASE("designed explicit patch: the half-disk given as NURBS, a spheroid", "
                         disk.evaluate(std::vector<double>{d.region[0][1], 1.0}.data()).x(1)) >=
         kRegionRadii * d.contact_radius);
   // A spheroid's pole: Hertz with its radius of curvature A^2 / C.
-  const ImpactDesign s = designPatchImpact(spheroidSection(0.01, 0.005), true, kSteel, 1, true,
-                                           {0.0}, impactAt(0.05));
+  const ImpactDesign s =
+      designPatchImpact(spheroidSection(0.01, 0.005), true, kSteel, 1, true, {0.0}, impactAt(0.05));
   CHECK(s.surface_radius == Approx(0.02).epsilon(1e-10));
   const double m = kSteel.density * 4.0 / 3.0 * M_PI * 1e-4 * 0.005;
   const HertzSphere self{kSteel.youngs_modulus, kSteel.poisson_ratio, 0.02, m};
@@ -177,16 +176,61 @@ TEST_CASE("designed explicit patch: points the rule refuses", "[design]") {
     P.col(2) *= 0.005;
     return NurbsPatch(b.knotVectors(), P, b.weights());
   }();
-  refuses(s3, 1, true, {0.3, 0.2}, "elliptical");  // (0.5, 0.125) is its pole: umbilic
+  // A needle-like ellipsoid: principal curvatures 200 times apart.
+  const NurbsPatch needle = [] {
+    NurbsPatch b = solidSphere(1.0);
+    Eigen::MatrixXd P = b.points();
+    P.col(0) *= 0.01;
+    P.col(1) *= 0.0005;
+    P.col(2) *= 0.01;
+    return NurbsPatch(b.knotVectors(), P, b.weights());
+  }();
+  const FacePoint tip = facePoint(needle, 1, true, {0.5, 1.0, 0.125});
+  REQUIRE(tip.curvatures[1] / tip.curvatures[0] > kMaxCurvatureRatio);
+  refuses(needle, 1, true, {0.5, 0.125}, "contact line");
+  (void)s3;
   // The sphere itself is designed at any regular point (level 0 from the rule).
   const ImpactDesign d = designPatchImpact(ball, false, kSteel, 1, true, {0.4, 0.1}, impactAt(0.2));
   CHECK(d.surface_radius == Approx(kR).epsilon(1e-9));
 }
 
+TEST_CASE("designed explicit patch: an elliptical contact point", "[design]") {
+  // An ellipsoid of semi-axes 12, 10, 8 mm (x, y, z) at the end of its z axis, the solid
+  // sphere's contact point (1/2, 1, 1/8) scaled: principal curvatures c / a^2 = 8 / 144 and
+  // 8 / 100 per mm (radii 18 and 12.5 mm), B / A = 1.44 against itself.
+  NurbsPatch b = solidSphere(1.0);
+  Eigen::MatrixXd P = b.points();
+  P.col(0) *= 0.012;
+  P.col(1) *= 0.010;
+  P.col(2) *= 0.008;
+  const NurbsPatch ellipsoid(b.knotVectors(), P, b.weights());
+  const FacePoint f = facePoint(ellipsoid, 1, true, {0.5, 1.0, 0.125});
+  CHECK(f.curvatures[0] == Approx(0.008 / (0.012 * 0.012)).epsilon(1e-9));
+  CHECK(f.curvatures[1] == Approx(0.008 / (0.010 * 0.010)).epsilon(1e-9));
+  const double volume = 4.0 / 3.0 * M_PI * 0.012 * 0.010 * 0.008;
+  CHECK(patchVolume(ellipsoid, false) == Approx(volume).epsilon(1e-9));
+  const ImpactDesign d =
+      designPatchImpact(ellipsoid, false, kSteel, 1, true, {0.5, 0.125}, impactAt(0.2));
+  // Hertz's ellipse for A = k1, B = k2 (the same body), E* = E / (2 (1 - nu^2)).
+  const double Es = kSteel.youngs_modulus / (2.0 * (1.0 - 0.09));
+  const double m = kSteel.density * volume / 2.0;
+  const HertzImpact h =
+      hertzImpact(hertzEllipse(f.curvatures[0], f.curvatures[1], Es, 1.0).stiffness, m, 0.2);
+  const HertzEllipse peak = hertzEllipse(f.curvatures[0], f.curvatures[1], Es, h.max_force);
+  REQUIRE(d.hertz);
+  CHECK(d.hertz->max_force == Approx(h.max_force).epsilon(1e-9));
+  CHECK(d.contact_radius == Approx(peak.semi_major).epsilon(1e-9));
+  CHECK(d.contact_minor_radius == Approx(peak.semi_minor).epsilon(1e-9));
+  CHECK(d.contact_radius / d.contact_minor_radius == Approx(1.27500).epsilon(1e-4));
+  // Sized from b, reaching as far as a; not a sphere's point.
+  CHECK(std::max(d.finest_arc, d.finest_depth) <= d.contact_minor_radius / 2);
+  CHECK(d.surface_radius == 0.0);
+}
+
 TEST_CASE("built-in sphere turned to its contact direction", "[design]") {
   const double xi[3] = {kSphereContactXi[0], kSphereContactXi[1], kSphereContactXi[2]};
-  for (const Eigen::Vector3d& dir : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, -2, 0.5),
-                                     Eigen::Vector3d(0, 0, -1)}) {
+  for (const Eigen::Vector3d& dir :
+       {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, -2, 0.5), Eigen::Vector3d(0, 0, -1)}) {
     const NurbsPatch ball = solidSphere(kR, dir);
     CHECK((ball.evaluate(xi).x - kR * dir.normalized()).norm() < 1e-14);
     const ImpactDesign d = designSphereImpact(kR, kSteel, 1.0, impactAt(0.2), dir);

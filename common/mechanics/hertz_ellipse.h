@@ -1,0 +1,37 @@
+// Hertz's elliptical contact: two bodies whose surfaces at the contact point have principal
+// curvatures that differ, pressed together by a force F. Johnson, "Contact Mechanics"
+// (1985), Sect. 4.2 (eqs. 4.36-4.40), with the principal directions of the two surfaces
+// aligned. With the relative curvatures A <= B (the gap h = A x^2 + B y^2 before loading,
+// A = (k1' + k2') / 2, B = (k1'' + k2'') / 2 from the two bodies' principal curvatures) the
+// contact is an ellipse of semi-axes a >= b (a along the direction of A), eccentricity
+// e = sqrt(1 - b^2 / a^2), and with the complete elliptic integrals K(e), E(e):
+//
+//   B / A = ((a/b)^2 E(e) - K(e)) / (K(e) - E(e))     (e from the shape alone)
+//   A = p0 b (K(e) - E(e)) / (E* e^2 a^2),  p0 = 3 F / (2 pi a b)
+//       => a^3 = 3 F (K(e) - E(e)) / (2 pi E* e^2 A)
+//   delta = p0 b K(e) / E*                             (approach)
+//
+// so that F = K_e delta^(3/2) with a constant K_e: the impact is Hertz's with that
+// stiffness (hertz.h). For A = B it is the spheres' contact: a = b = sqrt(R* delta),
+// R* = 1 / (2 A). Units: 1/m, Pa, N, m.
+#pragma once
+
+namespace ffriga {
+
+struct HertzEllipse {
+  double semi_major = 0.0;    // a, m (along the direction of the smaller curvature A)
+  double semi_minor = 0.0;    // b, m
+  double eccentricity = 0.0;  // e = sqrt(1 - b^2 / a^2)
+  double max_pressure = 0.0;  // p0 = 3 F / (2 pi a b), Pa
+  double approach = 0.0;      // delta, m
+  double stiffness = 0.0;     // K_e of F = K_e delta^(3/2), N/m^(3/2)
+};
+
+// The contact under the force F > 0 for relative curvatures 0 < A <= B (swapped if not) and
+// effective modulus E*. Throws std::invalid_argument for A <= 0 or B / A beyond 1e6.
+HertzEllipse hertzEllipse(double A, double B, double effective_modulus, double force);
+
+// The eccentricity e of the contact ellipse for B / A >= 1 (the shape's alone).
+double ellipseEccentricity(double b_over_a);
+
+}  // namespace ffriga

@@ -1,0 +1,70 @@
+// Hertz's elliptical contact (common/mechanics/hertz_ellipse.h): the circle's limit against
+// the spheres' closed form, Johnson's second curvature equation (which the solver does not
+// use) satisfied by the ellipse found from the first, the load scaling a ~ F^(1/3),
+// delta ~ F^(2/3), and the ellipse's aspect ratio against an independent solution of
+// Johnson's shape equation (K and E by the trapezoidal rule on 400,001 points, a / b by
+// bisection, numpy: 1.27500, 2.50071, 8.87618, 18.1871 for B / A = 1.44, 4, 30, 100) and
+// Brewe & Hamrock's fit (NASA TN D-8510, 1977: a / b = 1.0339 (B / A)^0.636; within 3.5 %
+// up to B / A = 30, 6 % off at 100).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "common/mechanics/hertz.h"
+#include "common/mechanics/hertz_ellipse.h"
+
+namespace ffriga {
+namespace {
+
+constexpr double kEs = 1.16e11;  // steel on steel, E* = E / (2 (1 - nu^2)), Pa
+
+TEST_CASE("elliptical Hertz: the circle's limit", "[hertz]") {
+  const double R = 0.005;  // R* of two spheres r = 1 cm: A = B = 1 / (2 R*)
+  for (double ratio : {1.0, 1.0 + 1e-9}) {
+    const HertzEllipse h = hertzEllipse(0.5 / R, ratio * 0.5 / R, kEs, 146.0);
+    const double a = std::cbrt(3.0 * 146.0 * R / (4.0 * kEs));
+    CHECK(h.semi_major == Approx(a).epsilon(1e-8));
+    CHECK(h.semi_minor == Approx(a).epsilon(1e-8));
+    CHECK(h.approach == Approx(a * a / R).epsilon(1e-8));
+    CHECK(h.stiffness == Approx(4.0 / 3.0 * kEs * std::sqrt(R)).epsilon(1e-8));
+  }
+  CHECK(ellipseEccentricity(1.0) == 0.0);
+}
+
+TEST_CASE("elliptical Hertz: both curvature equations and the load scaling", "[hertz]") {
+  const std::vector<std::pair<double, double>> cases = {
+      {1.001, 0.0}, {1.44, 1.27500}, {4.0, 2.50071}, {30.0, 8.87618}, {100.0, 18.1871}};
+  for (const auto& [ratio, aspect] : cases) {
+    const double A = 50.0, B = ratio * A, F = 20.0;
+    const HertzEllipse h = hertzEllipse(A, B, kEs, F);
+    const double e = h.eccentricity, a = h.semi_major, b = h.semi_minor;
+    const double K = std::comp_ellint_1(e), E = std::comp_ellint_2(e);
+    // Johnson (4.39): A and B from p0, a, b, e.
+    const double c = h.max_pressure * b / (kEs * e * e * a * a);
+    CHECK(c * (K - E) == Approx(A).epsilon(1e-9));
+    CHECK(c * (a * a / (b * b) * E - K) == Approx(B).epsilon(1e-9));
+    CHECK(h.max_pressure == Approx(3.0 * F / (2.0 * M_PI * a * b)).epsilon(1e-14));
+    // F = K_e delta^(3/2) at any load.
+    const HertzEllipse h8 = hertzEllipse(A, B, kEs, 8.0 * F);
+    CHECK(h8.semi_major == Approx(2.0 * a).epsilon(1e-12));
+    CHECK(h8.approach == Approx(4.0 * h.approach).epsilon(1e-12));
+    CHECK(h8.stiffness == Approx(h.stiffness).epsilon(1e-12));
+    if (aspect > 0.0) CHECK(a / b == Approx(aspect).epsilon(1e-5));
+    if (ratio <= 30.0) CHECK(a / b == Approx(1.0339 * std::pow(ratio, 0.636)).epsilon(0.035));
+  }
+}
+
+TEST_CASE("elliptical Hertz: an impact with the elliptical law", "[hertz]") {
+  // The law F = K_e delta^1.5 in hertzImpact: the spheres' impact for A = B.
+  const HertzSphere s{2.11e11, 0.3, 0.01, 0.0329};
+  const HertzImpact spheres = hertzImpact(s, s, 0.2);
+  const HertzImpact law = hertzImpact(hertzStiffness(s, s), 0.0329 / 2, 0.2);
+  CHECK(law.max_force == Approx(spheres.max_force).epsilon(1e-14));
+  CHECK(law.duration == Approx(spheres.duration).epsilon(1e-14));
+  CHECK_THROWS(hertzEllipse(0.0, 1.0, kEs, 1.0));
+}
+
+}  // namespace
+}  // namespace ffriga
