@@ -115,6 +115,16 @@ void printSidSummary(const FlexibleBodySid& s, const std::string& path) {
                 s.design.finest_element);
     if (s.design.approach_speed > 0.0) std::printf(", impact at %.6g m/s", s.design.approach_speed);
     std::printf("\n");
+    if (s.design.contact_minor_radius > 0.0 &&
+        s.design.contact_minor_radius < s.design.contact_radius)
+      std::printf("                       elliptical: semi-axes %.6g x %.6g m\n",
+                  s.design.contact_radius, s.design.contact_minor_radius);
+    if (s.design.surface_radius > 0.0 && s.geometry.type == "nurbs")
+      std::printf("                       surface radius %.6g m at the contact point\n",
+                  s.design.surface_radius);
+    if (s.design.mode_cutoff_hz > 0.0)
+      std::printf("                       normal modes: every one below %.6g Hz\n",
+                  s.design.mode_cutoff_hz);
   }
   if (s.mesh.empty()) {
     std::printf("  visualisation mesh   none\n");

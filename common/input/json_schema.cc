@@ -4,6 +4,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace ffriga {
@@ -466,9 +467,39 @@ void JsonSchema::checkOneOf(const YamlDocument& doc, const YAML::Node& one, cons
       Str() << "expected one of " << branchValues(one, d) << "; found " << describeNode(tag));
 }
 
-// Exactly one branch must accept the node; if none does, the error of the first branch whose
-// type is the node's kind (a mapping against the object branch), so that the message names
-// the offending inner key rather than "expected a boolean".
+// What a oneOf branch of scalars accepts, for a message ("a number > 0", "'auto'", "one of
+// same, plane"); empty if the branch is not one of scalars alone (an object, a list, or
+// keywords beyond type, bounds, const and enum).
+std::string scalarAlternative(const YAML::Node& b) {
+  if (!b.IsMap()) return "";
+  Str out;
+  for (const auto& kv : b) {
+    const std::string k = kv.first.Scalar();
+    if (k != "type" && k != "const" && k != "enum" && k != "minimum" && k != "maximum" &&
+        k != "exclusiveMinimum" && k != "exclusiveMaximum" && k != "description" &&
+        k != "x-unit" && k != "default")
+      return "";
+  }
+  if (const YAML::Node c = b["const"]) return c.IsScalar() ? "'" + c.Scalar() + "'" : "";
+  if (const YAML::Node e = b["enum"]) {
+    out << "one of ";
+    for (std::size_t i = 0; i < e.size(); ++i) out << (i ? ", " : "") << e[i].Scalar();
+    return out.str();
+  }
+  const YAML::Node t = b["type"];
+  if (!t || !t.IsScalar() || t.Scalar() == "object" || t.Scalar() == "array") return "";
+  out << article(t.Scalar());
+  for (const auto& [kw, rule] : {std::pair<const char*, const char*>{"exclusiveMinimum", ">"},
+                                 {"minimum", ">="}, {"exclusiveMaximum", "<"}, {"maximum", "<="}})
+    if (b[kw]) out << " " << rule << " " << b[kw].Scalar();
+  return out.str();
+}
+
+// Exactly one branch must accept the node; if none does: for a scalar against branches of
+// scalars alone, every alternative in one line ("expected a number > 0 or 'auto'"); else the
+// error of the first branch whose type is the node's kind (a mapping against the object
+// branch), so that the message names the offending inner key rather than "expected a
+// boolean".
 void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
                                  const YAML::Node& node, const YAML::Node& parent,
                                  const std::string& key) const {
@@ -495,7 +526,22 @@ void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
     }
     accepted = i;
   }
-  if (accepted < 0) throw InputError(kindError.empty() ? firstError : kindError);
+  if (accepted >= 0) return;
+  if (node.IsScalar()) {
+    Str alternatives;
+    bool scalars = true;
+    for (int i = 0; i < static_cast<int>(one.size()) && scalars; ++i) {
+      const std::string a = scalarAlternative(resolve(one[i]));
+      scalars = !a.empty();
+      alternatives << (i ? " or " : "") << a;
+    }
+    if (scalars) {
+      throw inputError(doc, node, key,
+                       Str() << "expected " << alternatives.str() << "; found "
+                             << describeNode(node));
+    }
+  }
+  throw InputError(kindError.empty() ? firstError : kindError);
 }
 
 void JsonSchema::applyDefaults(YamlDocument& doc) const {

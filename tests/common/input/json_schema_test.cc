@@ -14,7 +14,9 @@ const char* kSchema = R"({
     "a": {"type": "number", "exclusiveMinimum": 0, "x-unit": "m"},
     "b": {"type": "array", "minItems": 2, "items": {"type": "integer"}},
     "c": {"enum": ["x", "y"]},
-    "d": {"$ref": "#/$defs/thing"}
+    "d": {"$ref": "#/$defs/thing"},
+    "e": {"oneOf": [{"type": "number", "exclusiveMinimum": 0}, {"const": "auto"}]},
+    "f": {"oneOf": [{"enum": ["same", "plane"]}, {"$ref": "#/$defs/thing"}]}
   },
   "$defs": {"thing": {"type": "object", "properties": {"n": {"type": "string"}}}}
 })";
@@ -41,6 +43,12 @@ TEST_CASE("schema validation reports file, line and key", "[schema]") {
   CHECK(errorOf("a: 1\nc: z\n") == "in.yaml:2: key 'c': expected one of x, y; found z");
   CHECK(errorOf("a: 1\nd: {n: [1]}\n").find("key 'd.n': expected a string") != std::string::npos);
   CHECK(errorOf("a: \"1\"\n").find("expected a number, found \"1\"") != std::string::npos);
+  // A oneOf of scalars names every alternative; one with a mapping branch, the scalar one's.
+  CHECK(errorOf("a: 1\ne: auto\nf: {n: x}\n").empty());
+  CHECK(errorOf("a: 1\ne: automatic\n") ==
+        "in.yaml:2: key 'e': expected a number > 0 or 'auto'; found automatic");
+  CHECK(errorOf("a: 1\ne: -2\n") == "in.yaml:2: key 'e': expected a number > 0 or 'auto'; found -2");
+  CHECK(errorOf("a: 1\nf: sphere\n") == "in.yaml:2: key 'f': expected one of same, plane; found sphere");
 }
 
 TEST_CASE("unsupported schema keywords are rejected when the schema is loaded", "[schema]") {

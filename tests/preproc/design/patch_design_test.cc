@@ -42,6 +42,17 @@ NurbsPatch dishSection(double k) {
                     Eigen::VectorXd::Ones(6));
 }
 
+// The unit solid sphere (contact point (1/2, 1, 1/8) at +z) scaled to semi-axes a, b, c
+// along x, y, z: an ellipsoid, whose point (1/2, 1, 1/8) is the end (0, 0, c) of its z axis.
+NurbsPatch ellipsoid(double a, double b, double c) {
+  const NurbsPatch ball = solidSphere(1.0);
+  Eigen::MatrixXd P = ball.points();
+  P.col(0) *= a;
+  P.col(1) *= b;
+  P.col(2) *= c;
+  return NurbsPatch(ball.knotVectors(), P, ball.weights());
+}
+
 DesignRequest impactAt(double v) {
   DesignRequest q;
   q.approach_speed = v;
@@ -167,28 +178,11 @@ TEST_CASE("designed explicit patch: points the rule refuses", "[design]") {
   refuses(ball, 1, true, {0.5, 0.25}, "C0 knot line");
   refuses(ball, 1, true, {0.0, 0.1}, "degenerate point");
   refuses(ball, 1, true, {0.5, 0.0}, "inside its face");
-  // An oblate spheroid off its pole: principal radii differ (elliptical Hertz).
-  const NurbsPatch s3 = [] {
-    NurbsPatch b = solidSphere(1.0);
-    Eigen::MatrixXd P = b.points();
-    P.col(0) *= 0.01;
-    P.col(1) *= 0.01;
-    P.col(2) *= 0.005;
-    return NurbsPatch(b.knotVectors(), P, b.weights());
-  }();
-  // A needle-like ellipsoid: principal curvatures 200 times apart.
-  const NurbsPatch needle = [] {
-    NurbsPatch b = solidSphere(1.0);
-    Eigen::MatrixXd P = b.points();
-    P.col(0) *= 0.01;
-    P.col(1) *= 0.0005;
-    P.col(2) *= 0.01;
-    return NurbsPatch(b.knotVectors(), P, b.weights());
-  }();
+  // A needle-like ellipsoid: principal curvatures 400 times apart at +z.
+  const NurbsPatch needle = ellipsoid(0.01, 0.0005, 0.01);
   const FacePoint tip = facePoint(needle, 1, true, {0.5, 1.0, 0.125});
   REQUIRE(tip.curvatures[1] / tip.curvatures[0] > kMaxCurvatureRatio);
   refuses(needle, 1, true, {0.5, 0.125}, "contact line");
-  (void)s3;
   // The sphere itself is designed at any regular point (level 0 from the rule).
   const ImpactDesign d = designPatchImpact(ball, false, kSteel, 1, true, {0.4, 0.1}, impactAt(0.2));
   CHECK(d.surface_radius == Approx(kR).epsilon(1e-9));
@@ -198,19 +192,14 @@ TEST_CASE("designed explicit patch: an elliptical contact point", "[design]") {
   // An ellipsoid of semi-axes 12, 10, 8 mm (x, y, z) at the end of its z axis, the solid
   // sphere's contact point (1/2, 1, 1/8) scaled: principal curvatures c / a^2 = 8 / 144 and
   // 8 / 100 per mm (radii 18 and 12.5 mm), B / A = 1.44 against itself.
-  NurbsPatch b = solidSphere(1.0);
-  Eigen::MatrixXd P = b.points();
-  P.col(0) *= 0.012;
-  P.col(1) *= 0.010;
-  P.col(2) *= 0.008;
-  const NurbsPatch ellipsoid(b.knotVectors(), P, b.weights());
-  const FacePoint f = facePoint(ellipsoid, 1, true, {0.5, 1.0, 0.125});
+  const NurbsPatch body = ellipsoid(0.012, 0.010, 0.008);
+  const FacePoint f = facePoint(body, 1, true, {0.5, 1.0, 0.125});
   CHECK(f.curvatures[0] == Approx(0.008 / (0.012 * 0.012)).epsilon(1e-9));
   CHECK(f.curvatures[1] == Approx(0.008 / (0.010 * 0.010)).epsilon(1e-9));
   const double volume = 4.0 / 3.0 * M_PI * 0.012 * 0.010 * 0.008;
-  CHECK(patchVolume(ellipsoid, false) == Approx(volume).epsilon(1e-9));
+  CHECK(patchVolume(body, false) == Approx(volume).epsilon(1e-9));
   const ImpactDesign d =
-      designPatchImpact(ellipsoid, false, kSteel, 1, true, {0.5, 0.125}, impactAt(0.2));
+      designPatchImpact(body, false, kSteel, 1, true, {0.5, 0.125}, impactAt(0.2));
   // Hertz's ellipse for A = k1, B = k2 (the same body), E* = E / (2 (1 - nu^2)).
   const double Es = kSteel.youngs_modulus / (2.0 * (1.0 - 0.09));
   const double m = kSteel.density * volume / 2.0;
