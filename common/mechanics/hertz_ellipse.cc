@@ -39,6 +39,11 @@ double ellipseEccentricity(double b_over_a) {
   return std::sqrt(1.0 - s * s);
 }
 
+double ellipseApproachLength(double a, double b) {
+  if (!(b > 0.0) || b >= a) return a;
+  return 2.0 * b * std::comp_ellint_1(std::sqrt(1.0 - b * b / (a * a))) / M_PI;
+}
+
 HertzEllipse hertzEllipse(double A, double B, double effective_modulus, double force) {
   if (A > B) std::swap(A, B);
   if (!(A > 0.0) || !(effective_modulus > 0.0) || !(force > 0.0))

@@ -34,4 +34,10 @@ HertzEllipse hertzEllipse(double A, double B, double effective_modulus, double f
 // The eccentricity e of the contact ellipse for B / A >= 1 (the shape's alone).
 double ellipseEccentricity(double b_over_a);
 
+// The length L with which the approach is delta = pi p0 L / (2 E*), as a circle's radius a
+// is (delta = p0 a K(0) / E* = a^2 / R*): L = 2 b K(e) / pi for semi-axes a >= b, and a for
+// a circle (b >= a, or b not given: b <= 0). `penalty_factor: auto` sets
+// c_p = p0 / (eps delta) = 2 E* / (pi eps L) from it.
+double ellipseApproachLength(double a, double b);
+
 }  // namespace ffriga

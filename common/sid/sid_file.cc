@@ -233,13 +233,13 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
     sid->design.hertz_max_force = optional("hertz_max_force", 0.0);
     sid->design.hertz_duration = optional("hertz_duration", 0.0);
     sid->design.mode_cutoff_hz = optional("mode_cutoff_hz", 0.0);
-    for (const char* name : {"contact_point", "contact_normal"}) {
-      if (!h5::exists(d, name)) continue;
-      const Eigen::VectorXd v = finiteVector(c, d, "/design", name);
-      if (v.size() != 3) c.fail(Str() << "/design/" << name << " must have 3 components");
-      (std::string(name) == "contact_point" ? sid->design.contact_point
-                                            : sid->design.contact_normal) = v;
-    }
+    const auto optionalPoint = [&](const char* name, Eigen::VectorXd* out) {
+      if (!h5::exists(d, name)) return;
+      *out = finiteVector(c, d, "/design", name);
+      if (out->size() != 3) c.fail(Str() << "/design/" << name << " must have 3 components");
+    };
+    optionalPoint("contact_point", &sid->design.contact_point);
+    optionalPoint("contact_normal", &sid->design.contact_normal);
   }
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
     Handle v = h5::openGroup(c, file, "visualisation");

@@ -29,25 +29,21 @@ double quarterArcSpeed(double u) {
 // for the designs' curves).
 constexpr int kCurveSamples = 2048;
 
-// A monotone table f(u) and its inverse by linear interpolation: u at f.
+// y at x by linear interpolation in the table (xs non-decreasing), clamped to its ends.
+double interpolate(const std::vector<double>& xs, const std::vector<double>& ys, double x) {
+  if (x <= xs.front()) return ys.front();
+  if (x >= xs.back()) return ys.back();
+  const std::size_t j =
+      static_cast<std::size_t>(std::upper_bound(xs.begin(), xs.end(), x) - xs.begin());
+  const double t = (x - xs[j - 1]) / (xs[j] - xs[j - 1]);
+  return ys[j - 1] + t * (ys[j] - ys[j - 1]);
+}
+
+// A monotone table f(u) (u increasing, f non-decreasing): f at u, and its inverse, u at f.
 struct MonotoneTable {
   std::vector<double> u, f;
-  double inverse(double value) const {
-    if (value <= f.front()) return u.front();
-    if (value >= f.back()) return u.back();
-    const auto it = std::upper_bound(f.begin(), f.end(), value);
-    const std::size_t j = static_cast<std::size_t>(it - f.begin());
-    const double t = (value - f[j - 1]) / (f[j] - f[j - 1]);
-    return u[j - 1] + t * (u[j] - u[j - 1]);
-  }
-  double at(double uu) const {  // f at u (u increasing)
-    if (uu <= u.front()) return f.front();
-    if (uu >= u.back()) return f.back();
-    const auto it = std::upper_bound(u.begin(), u.end(), uu);
-    const std::size_t j = static_cast<std::size_t>(it - u.begin());
-    const double t = (uu - u[j - 1]) / (u[j] - u[j - 1]);
-    return f[j - 1] + t * (f[j] - f[j - 1]);
-  }
+  double inverse(double value) const { return interpolate(f, u, value); }
+  double at(double uu) const { return interpolate(u, f, uu); }
 };
 
 // The iso-parametric curve through xi in direction a, sampled at kCurveSamples + 1 knots.

@@ -11,6 +11,7 @@
 #include "common/input/schemas.h"
 #include "common/input/yaml_overrides.h"
 #include "common/mechanics/hertz.h"
+#include "common/mechanics/hertz_ellipse.h"
 #include "runtime/bodies/quasi_static_rule.h"
 #include "runtime/contact/contact_pair.h"
 #include "runtime/contact/obstacle_contact.h"
@@ -216,15 +217,6 @@ constexpr double kAutoPenaltyPenetration = 0.002;
 
 // Pair c's c_p for penalty_factor: auto, from the bodies' materials and designed contact
 // radii (body_b < 0: a rigid obstacle, infinitely stiff).
-// The length L of c_p = 2 E* / (pi eps L): for a circle of radius a, L = a; for an ellipse
-// of semi-axes a >= b (eccentricity e), where the penetration p0 / c_p is eps of Hertz's
-// approach p0 b K(e) / E* (common/mechanics/hertz_ellipse.h), L = 2 b K(e) / pi.
-double penaltyLength(const SidDesign& d) {
-  const double a = d.contact_radius, b = d.contact_minor_radius;
-  if (!(b > 0.0) || b >= a) return a;
-  return 2.0 * b * std::comp_ellint_1(std::sqrt(1.0 - b * b / (a * a))) / M_PI;
-}
-
 double SceneBuilder::automaticPenalty(std::size_t c, int body_a, int body_b) const {
   const MultibodySystem& sys = *scene_.system;
   const double inf = std::numeric_limits<double>::infinity();
@@ -240,7 +232,9 @@ double SceneBuilder::automaticPenalty(std::size_t c, int body_a, int body_b) con
       sides[i].youngs_modulus = sid.material.youngs_modulus;
       sides[i].poisson_ratio = sid.material.poisson_ratio;
     }
-    if (sid.design.present) radius = std::min(radius, penaltyLength(sid.design));
+    if (sid.design.present)  // an ellipse counts as its approach length (hertz_ellipse.h)
+      radius = std::min(radius, ellipseApproachLength(sid.design.contact_radius,
+                                                      sid.design.contact_minor_radius));
   }
   const YAML::Node node = doc().root["contacts"][c]["penalty_factor"];
   const std::string key = Str() << "contacts[" << c << "].penalty_factor";

@@ -31,6 +31,8 @@ TEST_CASE("elliptical Hertz: the circle's limit", "[hertz]") {
     CHECK(h.stiffness == Approx(4.0 / 3.0 * kEs * std::sqrt(R)).epsilon(1e-8));
   }
   CHECK(ellipseEccentricity(1.0) == 0.0);
+  CHECK(ellipseApproachLength(1e-4, 1e-4) == 1e-4);
+  CHECK(ellipseApproachLength(1e-4, 0.0) == 1e-4);  // b not given
 }
 
 TEST_CASE("elliptical Hertz: both curvature equations and the load scaling", "[hertz]") {
@@ -52,6 +54,9 @@ TEST_CASE("elliptical Hertz: both curvature equations and the load scaling", "[h
     CHECK(h8.approach == Approx(4.0 * h.approach).epsilon(1e-12));
     CHECK(h8.stiffness == Approx(h.stiffness).epsilon(1e-12));
     if (aspect > 0.0) CHECK(a / b == Approx(aspect).epsilon(1e-5));
+    // The approach as a circle's: delta = pi p0 L / (2 E*).
+    CHECK(h.approach ==
+          Approx(M_PI * h.max_pressure * ellipseApproachLength(a, b) / (2.0 * kEs)).epsilon(1e-12));
     if (ratio <= 30.0) CHECK(a / b == Approx(1.0339 * std::pow(ratio, 0.636)).epsilon(0.035));
   }
 }
