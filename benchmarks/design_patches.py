@@ -8,7 +8,9 @@ body hits an identical one, turned over, contact point on contact point, with
 `penalty_factor: auto`. The force peak and duration are compared with the design's own
 Hertz solution (the SID's /design/hertz_max_force and hertz_duration: circular, or
 elliptical where the principal curvatures differ; common/mechanics/hertz_ellipse.h), which
-for a spherical point is also the result file's force_vs_hertz.
+is also the result file's own reference (force_vs_hertz: ffrsim's Hertz from the SIDs'
+principal curvatures and directions, runtime/report/hertz_reference.h); the script checks
+that the two agree.
 
 Cases:
   spheroid_*   oblate steel spheroids (axisymmetric), semi-axes A across and C along the
@@ -166,6 +168,10 @@ def run(build, out, case, N):
     t_sim = time.time() - t0
     with h5py.File(result, "r") as r:
         F, T = float(r.attrs["max_contact_force_N"]), float(r.attrs["contact_duration_s"])
+        own = float(r.attrs["hertz_max_force_N"]), float(r.attrs["hertz_duration_s"])
+    if abs(own[0] / F_h - 1) > 1e-9 or abs(own[1] / T_h - 1) > 1e-9:
+        sys.exit(f"{name}: the result's Hertz reference {own} differs from the design's "
+                 f"{(F_h, T_h)}")
     return dict(name=name, N=N, T_f1=T_h * f1, a=a, b=b, F_hertz=F_h, T_hertz=T_h, F=F, T=T,
                 force=F / F_h - 1, duration=T / T_h - 1, ndof=ndof, nq=nq,
                 igaprep_s=t_prep, ffrsim_s=t_sim)

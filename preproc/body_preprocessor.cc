@@ -348,6 +348,9 @@ void BodyPreprocessor::sampleVisualisation() {
     sid_.design.contact_normal = Eigen::Vector3d::Zero();
     sid_.design.contact_point.head(d.contact_point.size()) = d.contact_point;
     sid_.design.contact_normal.head(d.contact_normal.size()) = d.contact_normal;
+    sid_.design.principal_curvatures =
+        Eigen::Vector2d(d.principal_curvatures[0], d.principal_curvatures[1]);
+    if (d.principal_direction.size() == 3) sid_.design.principal_direction = d.principal_direction;
   }
   const IsotropicMaterial& material = config_.material;
   const Eigen::MatrixXd& P = space_->controlPoints();

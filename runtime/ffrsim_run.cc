@@ -122,8 +122,9 @@ void FfrsimRun::attach() {
   hertz_ = hertzReferences(scene_);
   for (int c = 0; c < sys.numContacts(); ++c) {
     if (!hertz_[c]) continue;
-    writeHertzReference(writer_->file(), sys.contact(c).name(), hertz_[c]->impact,
-                        hertz_[c]->approach_speed, sys.numContacts() == 1);
+    const HertzReference& h = *hertz_[c];
+    writeHertzReference(writer_->file(), sys.contact(c).name(), h.impact, h.approach_speed,
+                        h.curvatures.A, h.curvatures.B, sys.numContacts() == 1);
   }
   writer_->enablePeakStressLines(hertzPartners(scene_, hertz_));
   if (scene_.visualisation.enabled) writer_->enableFrames(scene_.visualisation);

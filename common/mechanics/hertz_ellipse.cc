@@ -1,5 +1,6 @@
 #include "common/mechanics/hertz_ellipse.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -37,6 +38,15 @@ double ellipseEccentricity(double b_over_a) {
   }
   const double s = std::exp(0.5 * (lo + hi));
   return std::sqrt(1.0 - s * s);
+}
+
+RelativeCurvatures relativeCurvatures(double k1, double k2, double kp1, double kp2,
+                                      double cos_alpha) {
+  const double d = k1 - k2, dp = kp1 - kp2;
+  const double cos2 = 2.0 * cos_alpha * cos_alpha - 1.0;
+  const double sum = 0.5 * (k1 + k2 + kp1 + kp2);
+  const double diff = 0.5 * std::sqrt(std::max(0.0, d * d + dp * dp + 2.0 * d * dp * cos2));
+  return {0.5 * (sum - diff), 0.5 * (sum + diff)};
 }
 
 double ellipseApproachLength(double a, double b) {

@@ -31,6 +31,19 @@ struct HertzEllipse {
 // effective modulus E*. Throws std::invalid_argument for A <= 0 or B / A beyond 1e6.
 HertzEllipse hertzEllipse(double A, double B, double effective_modulus, double force);
 
+// The relative curvatures (A, B), A <= B, of two convex surfaces with principal curvatures
+// k1, k2 and kp1, kp2 (1/m; a plane 0, 0) whose directions of k1 and kp1 make the angle
+// alpha (Johnson (1985) Sect. 2.1):
+//   A + B = (k1 + k2 + kp1 + kp2) / 2,
+//   B - A = sqrt((k1 - k2)^2 + (kp1 - kp2)^2 + 2 (k1 - k2)(kp1 - kp2) cos 2 alpha) / 2.
+// Aligned (alpha = 0): A = (k1 + kp1) / 2, B = (k2 + kp2) / 2; two equal cylinders crossed at
+// right angles (alpha = pi / 2): A = B, a circle.
+struct RelativeCurvatures {
+  double A = 0.0, B = 0.0;  // 1/m
+};
+RelativeCurvatures relativeCurvatures(double k1, double k2, double kp1, double kp2,
+                                      double cos_alpha);
+
 // The eccentricity e of the contact ellipse for B / A >= 1 (the shape's alone).
 double ellipseEccentricity(double b_over_a);
 

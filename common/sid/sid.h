@@ -103,6 +103,10 @@ struct SidDesign {
   double contact_minor_radius = 0.0;
   double hertz_max_force = 0.0, hertz_duration = 0.0;
   double mode_cutoff_hz = 0.0;  // the normal modes' cutoff (Hz); 0: a count was given
+  // The surface's principal curvatures at the contact point (1/m, ascending: 2 values) and
+  // the unit direction of the first (3 components, geometry coordinates; written only where
+  // they differ by more than 1 %: an elliptical contact). Optional: empty when absent.
+  Eigen::VectorXd principal_curvatures, principal_direction;
 };
 
 struct FlexibleBodySid {

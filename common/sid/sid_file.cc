@@ -186,6 +186,10 @@ void writeBodyDescription(const Context& c, hid_t file, const FlexibleBodySid& s
     h5::writeScalar(c, d, "hertz_max_force", sid.design.hertz_max_force, "N");
     h5::writeScalar(c, d, "hertz_duration", sid.design.hertz_duration, "s");
     h5::writeScalar(c, d, "mode_cutoff_hz", sid.design.mode_cutoff_hz, "Hz");
+    if (sid.design.principal_curvatures.size() == 2)
+      h5::writeVector(c, d, "principal_curvatures", sid.design.principal_curvatures, "1/m");
+    if (sid.design.principal_direction.size() == 3)
+      h5::writeVector(c, d, "principal_direction", sid.design.principal_direction, "1");
   }
   if (!sid.mesh.empty()) {
     Handle v = h5::createGroup(c, file, "visualisation");
@@ -233,13 +237,16 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
     sid->design.hertz_max_force = optional("hertz_max_force", 0.0);
     sid->design.hertz_duration = optional("hertz_duration", 0.0);
     sid->design.mode_cutoff_hz = optional("mode_cutoff_hz", 0.0);
-    const auto optionalPoint = [&](const char* name, Eigen::VectorXd* out) {
+    const auto optionalVector = [&](const char* name, int size, Eigen::VectorXd* out) {
       if (!h5::exists(d, name)) return;
       *out = finiteVector(c, d, "/design", name);
-      if (out->size() != 3) c.fail(Str() << "/design/" << name << " must have 3 components");
+      if (out->size() != size)
+        c.fail(Str() << "/design/" << name << " must have " << size << " components");
     };
-    optionalPoint("contact_point", &sid->design.contact_point);
-    optionalPoint("contact_normal", &sid->design.contact_normal);
+    optionalVector("contact_point", 3, &sid->design.contact_point);
+    optionalVector("contact_normal", 3, &sid->design.contact_normal);
+    optionalVector("principal_curvatures", 2, &sid->design.principal_curvatures);
+    optionalVector("principal_direction", 3, &sid->design.principal_direction);
   }
   if (content == SidContent::kAll && h5::exists(file, "visualisation")) {
     Handle v = h5::openGroup(c, file, "visualisation");

@@ -216,6 +216,9 @@ ImpactDesign designOnChart(const std::vector<ChartDirection>& chart, double radi
   const double a = d.contact_radius;
   d.elements_per_contact_radius = request.elements_per_contact_radius;
   d.surface_radius = radius;
+  d.principal_curvatures = curvatures.empty()
+                               ? std::array<double, 2>{1.0 / radius, 1.0 / radius}
+                               : std::array<double, 2>{curvatures.front(), curvatures.back()};
   d.contact_point = surface;
   d.contact_normal = outward;
   designHierarchy(chart, d.contact_minor_radius, request.elements_per_contact_radius, &d);
@@ -386,8 +389,10 @@ ImpactDesign designPatchImpact(const NurbsPatch& patch, bool axisymmetric,
                                  f.normal, chart[face_direction].reach_limit);
   d.face_direction = face_direction;
   d.face_upper = face_upper;
-  if (f.curvatures.back() - f.curvatures.front() > kSphericalTolerance * f.curvatures.back())
+  if (f.curvatures.back() - f.curvatures.front() > kSphericalTolerance * f.curvatures.back()) {
     d.surface_radius = 0.0;  // not a sphere's point
+    d.principal_direction = f.directions.front();
+  }
   d.refinement = level0;
   std::string spans;
   for (int a = 0; a < patch.paramDim(); ++a) {

@@ -119,6 +119,11 @@ struct ImpactDesign {
   bool face_upper = true;
   Eigen::VectorXd contact_point, contact_normal;
   double surface_radius = 0.0;
+  // The surface's two principal curvatures there (1/m, ascending; a sphere's 1 / r twice,
+  // an axisymmetric section's on-axis one twice) and the unit direction of the first
+  // (geometry coordinates; empty where they agree within kSphericalTolerance).
+  std::array<double, 2> principal_curvatures{};
+  Eigen::VectorXd principal_direction;
   // The contact region on that face: one [lo, hi] per direction along it ([xi], or
   // [xi], [zeta]).
   std::vector<std::array<double, 2>> region;

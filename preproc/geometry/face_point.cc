@@ -71,6 +71,12 @@ FacePoint facePoint(const NurbsPatch& patch, int face_direction, bool face_upper
   // I^-1 II is self-adjoint in I's inner product: the generalised symmetric eigenproblem.
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(II, I);
   for (int a = 0; a < m; ++a) f.curvatures.push_back(eig.eigenvalues()(a));
+  if (m < 2) return f;
+  for (int a = 0; a < m; ++a) {
+    Eigen::VectorXd t = Eigen::VectorXd::Zero(d);
+    for (int b = 0; b < m; ++b) t += eig.eigenvectors()(b, a) * f.tangents[b];
+    f.directions.push_back(t.normalized());
+  }
   return f;
 }
 

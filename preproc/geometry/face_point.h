@@ -5,7 +5,8 @@
 //   I_ab = t_a . t_b,   II_ab = -n . d2x/du_a du_b   (n the outward normal)
 // give the principal curvatures as the eigenvalues of I^-1 II: positive where the face
 // bends away from its outward normal (a convex point: a sphere of radius R has 1/R, 1/R),
-// negative where it is concave, zero where flat. A 2D section's edge has one curvature,
+// negative where it is concave, zero where flat; the generalised eigenvectors c give the
+// principal directions c_a t_a (t_a = dx/du_a). A 2D section's edge has one curvature,
 // -n . x_uu / |x_u|^2; an axisymmetric body's surface on the axis has that one twice.
 #pragma once
 
@@ -21,6 +22,7 @@ struct FacePoint {
   Eigen::VectorXd x;                      // position, m
   Eigen::VectorXd normal;                 // outward unit normal
   std::vector<double> curvatures;         // principal curvatures, 1/m, ascending (convex > 0)
+  std::vector<Eigen::VectorXd> directions;  // 3D: their unit principal directions (2D: none)
   std::vector<Eigen::VectorXd> tangents;  // dx/du_a along the face, m per knot, direction order
   double jacobian = 0.0;                  // |x_u| (2D) or |x_u x x_w| (3D): 0 at a degenerate point
   double size = 0.0;                      // the patch's bounding-box diagonal, m (the scale of

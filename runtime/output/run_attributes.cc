@@ -72,7 +72,8 @@ void writeStaticPreload(ResultFile& file, long iterations, double residual, doub
 }
 
 void writeHertzReference(ResultFile& file, const std::string& pair, const HertzImpact& impact,
-                         double approach_speed, bool at_root) {
+                         double approach_speed, double curvature_A, double curvature_B,
+                         bool at_root) {
   const std::string group = "/contacts/" + pair;
   const std::pair<const char*, double> values[] = {
       {"hertz_max_force_N", impact.max_force},
@@ -82,7 +83,9 @@ void writeHertzReference(ResultFile& file, const std::string& pair, const HertzI
       {"hertz_max_approach_m", impact.max_approach},
       {"hertz_stiffness_N_m1_5", impact.stiffness},
       {"hertz_effective_mass_kg", impact.effective_mass},
-      {"hertz_steady_load_N", impact.preload}};
+      {"hertz_steady_load_N", impact.preload},
+      {"hertz_curvature_A_1_m", curvature_A},
+      {"hertz_curvature_B_1_m", curvature_B}};
   for (const auto& [name, v] : values) {
     file.setObjectAttribute(group, name, v);
     if (at_root) file.setAttribute(name, v);

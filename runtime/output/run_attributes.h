@@ -32,9 +32,11 @@ void writeWarnings(ResultFile& file, const std::vector<std::string>& warnings);
 void writeStaticPreload(ResultFile& file, long iterations, double residual, double elastic_force);
 
 // Hertz's prediction for a contact pair (attributes hertz_* of /contacts/<pair>, and of the
-// root with `at_root`).
+// root with `at_root`), with the relative curvatures A <= B of its gap (1/m; A = B for
+// spheres, A < B an elliptical contact).
 void writeHertzReference(ResultFile& file, const std::string& pair, const HertzImpact& impact,
-                         double approach_speed, bool at_root);
+                         double approach_speed, double curvature_A, double curvature_B,
+                         bool at_root);
 // Root attributes force_vs_hertz and, once the contact ended, duration_vs_hertz (relative).
 void writeHertzComparison(ResultFile& file, double force_vs_hertz, bool contact_ended,
                           double duration_vs_hertz);

@@ -4,32 +4,68 @@
 #include <cmath>
 #include <limits>
 
+#include "common/mechanics/hertz_ellipse.h"
 #include "runtime/contact/obstacle_contact.h"
 
 namespace ffriga {
 
 namespace {
 
-// A designed explicit patch: its contact point is spherical with the SID's surface radius
-// (preproc/design/impact_design.h; /design/surface_radius).
+// A designed explicit patch: its contact point's surface radius (spherical), or its
+// principal curvatures (elliptical) from the SID (preproc/design/impact_design.h; /design).
 bool designedPatch(const FlexibleBodySid& sid) {
-  return sid.geometry.type == "nurbs" && sid.design.present && sid.design.surface_radius > 0.0;
+  return sid.geometry.type == "nurbs" && sid.design.present &&
+         (sid.design.surface_radius > 0.0 || sid.design.principal_direction.size() == 3);
 }
 
+// A body's surface at its contact point as Hertz sees it: principal curvatures k1 <= k2
+// (1/m) and the direction of k1 (inertial components at t = 0; zero where k1 = k2).
+struct PrincipalCurvatures {
+  double k1 = 0.0, k2 = 0.0;
+  Eigen::Vector3d d1 = Eigen::Vector3d::Zero();
+  bool spherical() const { return d1.isZero(); }
+};
+
 // A sphere's Hertz data from its SID (material and exact geometry, SID format 3), or a
-// designed patch's at its contact point. A frozen body (a SID body without elastic
+// designed patch's at its contact point (an elliptical one: radius the mean curvature's,
+// used only through its curvatures). A frozen body (a SID body without elastic
 // coordinates: a rigid NURBS target) is infinitely stiff.
 std::optional<HertzSphere> sphereOf(const BodyModel& body) {
   const FlexibleBodySid& sid = body.sid();
   const std::string& type = sid.geometry.type;
   if (type != "half_disk" && type != "sphere" && !designedPatch(sid)) return std::nullopt;
   HertzSphere s;
-  s.radius = designedPatch(sid) ? sid.design.surface_radius : sid.geometry.radius;
+  s.radius = sid.geometry.radius;
+  if (designedPatch(sid))
+    s.radius = sid.design.surface_radius > 0.0
+                   ? sid.design.surface_radius
+                   : 2.0 / (sid.design.principal_curvatures(0) + sid.design.principal_curvatures(1));
   s.youngs_modulus = body.nq() > 0 ? sid.material.youngs_modulus
                                    : std::numeric_limits<double>::infinity();
   s.poisson_ratio = sid.material.poisson_ratio;
   s.mass = sid.mass;
   return s;
+}
+
+// Body b's principal curvatures at its contact point: a sphere's (or a spherical designed
+// patch's) 1 / R twice, an elliptical designed patch's from its SID, turned by the body's
+// initial rotation.
+PrincipalCurvatures curvaturesOf(const Scene& scene, int b, const HertzSphere& s) {
+  const FlexibleBodySid& sid = scene.system->body(b).sid();
+  if (!designedPatch(sid) || sid.design.principal_direction.size() != 3)
+    return {1.0 / s.radius, 1.0 / s.radius, Eigen::Vector3d::Zero()};
+  return {sid.design.principal_curvatures(0), sid.design.principal_curvatures(1),
+          scene.initial_rotation[b] * Eigen::Vector3d(sid.design.principal_direction)};
+}
+
+// Hertz's elliptical impact of two surfaces (common/mechanics/hertz_ellipse.h): the law's
+// stiffness from the ellipse at 1 N (F = K_e delta^(3/2) holds at every load), E* and m*
+// of the two bodies.
+HertzImpact ellipticalImpact(const RelativeCurvatures& r, const HertzSphere& a,
+                             const HertzSphere& b, double v, double preload = 0.0) {
+  const double m = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
+  const double K = hertzEllipse(r.A, r.B, effectiveModulus(a, b), 1.0).stiffness;
+  return hertzImpact(K, m, v, preload);
 }
 
 // A rigid obstacle as Hertz sees it: infinitely stiff and heavy; a plane also infinitely
@@ -43,12 +79,14 @@ HertzSphere rigidPartner(const RigidObstacle& o) {
 // point when the sphere's surface first touches, under gravity alone (v_n^2 + 2 g_n d with
 // d the initial clearance; a body that never gets there has none), and gravity presses it
 // on during the contact: the steady load m g_n of hertzImpact (the obstacle does not fall
-// with it, unlike a partner body). A cylinder has none:
-// a sphere on it makes an elliptical contact, which the spheres' Hertz solution is not.
+// with it, unlike a partner body). A solid sphere on a cylinder makes Hertz's elliptical
+// contact (relative curvatures 1 / (2 r) along the axis, (1 / r + 1 / R_c) / 2 across).
 std::optional<HertzReference> obstacleReference(const Scene& scene, const ObstacleContact& c) {
-  if (c.obstacle().shape() == RigidObstacle::Shape::kCylinder) return std::nullopt;
-  if (designedPatch(scene.system->body(c.bodyA()).sid())) return std::nullopt;  // no centre
-  const auto sa = sphereOf(scene.system->body(c.bodyA()));
+  const bool cylinder = c.obstacle().shape() == RigidObstacle::Shape::kCylinder;
+  const BodyModel& body = scene.system->body(c.bodyA());
+  if (cylinder && body.sid().space_dim != 3) return std::nullopt;  // a coaxial ring
+  if (designedPatch(body.sid())) return std::nullopt;  // no centre
+  const auto sa = sphereOf(body);
   if (!sa) return std::nullopt;
   const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];
   const Eigen::Vector3d& v = scene.initial_velocity[c.bodyA()];
@@ -62,7 +100,16 @@ std::optional<HertzReference> obstacleReference(const Scene& scene, const Obstac
   h.approach_speed = std::sqrt(v2);
   h.sphere_a = *sa;
   h.sphere_b = rigidPartner(c.obstacle());
-  h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed, sa->mass * gn);
+  const double preload = sa->mass * gn;
+  if (cylinder) {
+    const double k = 1.0 / sa->radius;
+    h.curvatures = relativeCurvatures(k, k, 0.0, 1.0 / c.obstacle().radius(), 1.0);
+    h.elliptical = true;
+    h.impact = ellipticalImpact(h.curvatures, h.sphere_a, h.sphere_b, h.approach_speed, preload);
+  } else {
+    h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed, preload);
+    h.curvatures.A = h.curvatures.B = 0.5 / effectiveRadius(h.sphere_a, h.sphere_b);
+  }
   return h;
 }
 
@@ -107,9 +154,19 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   HertzReference h;
   h.approach_speed = -(vb - va).dot(n);
   if (!(h.approach_speed > 0.0)) return std::nullopt;
-  h.impact = hertzImpact(*sa, *sb, h.approach_speed);
   h.sphere_a = *sa;
   h.sphere_b = *sb;
+  const PrincipalCurvatures ca = curvaturesOf(scene, c.bodyA(), *sa);
+  const PrincipalCurvatures cb = curvaturesOf(scene, c.bodyB(), *sb);
+  if (ca.spherical() && cb.spherical()) {
+    h.impact = hertzImpact(*sa, *sb, h.approach_speed);
+    h.curvatures.A = h.curvatures.B = 0.5 / effectiveRadius(*sa, *sb);
+    return h;
+  }
+  const double cos_alpha = ca.spherical() || cb.spherical() ? 1.0 : ca.d1.dot(cb.d1);
+  h.curvatures = relativeCurvatures(ca.k1, ca.k2, cb.k1, cb.k2, cos_alpha);
+  h.elliptical = true;
+  h.impact = ellipticalImpact(h.curvatures, *sa, *sb, h.approach_speed);
   return h;
 }
 
@@ -125,7 +182,7 @@ std::vector<std::optional<HertzPartner>> hertzPartners(const Scene& scene,
   std::vector<std::optional<HertzPartner>> partners(sys.numBodies());
   for (int c = 0; c < sys.numContacts(); ++c) {
     const auto& h = hertz[c];
-    if (!h) continue;
+    if (!h || h->elliptical) continue;  // the stress lines know the spheres' field only
     const int a = sys.contact(c).bodyA(), b = sys.contact(c).bodyB();
     if (!partners[a]) partners[a] = HertzPartner{h->sphere_a, h->sphere_b};
     if (b >= 0 && !partners[b]) partners[b] = HertzPartner{h->sphere_b, h->sphere_a};

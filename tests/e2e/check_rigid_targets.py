@@ -2,7 +2,7 @@
 (sphere3d_coarse, from e2e.impact3d_coarse's folder):
   1. thrown at 0.1 m/s onto a rigid cylinder of radius 2 cm across its path
      (configs/scenes/ball_on_cylinder.yaml), against Hertz's elliptical contact of a sphere
-     on a rigid cylinder, computed here;
+     on a rigid cylinder, computed here (and ffrsim's own elliptical reference against it);
   2. the Sect. 6 head-on impact (configs/scenes/impact3d_coarse.yaml) with the upper sphere
      frozen (a rigid body with its exact NURBS surface from the SID), against ffrsim's own
      Hertz figures, which take a frozen sphere as rigid (E = infinity): force and duration
@@ -99,6 +99,15 @@ with h5py.File(result, "r") as f:
     pair = f["contacts/impact"]
     check(pair.attrs["obstacle_shape"] == "cylinder" and "obstacle_axis" in pair,
           "the pair records its cylinder (obstacle_shape, obstacle_axis)")
+    # ffrsim's own reference (runtime/report/hertz_reference.cc: Johnson's relative
+    # curvatures, std::comp_ellint_*) against the one computed here (bisection, quadrature).
+    check(abs(float(pair.attrs["hertz_curvature_A_1_m"]) * 2 * r - 1) <= 1e-12 and
+          abs(float(pair.attrs["hertz_curvature_B_1_m"]) / (0.5 * (1 / r + 1 / CYLINDER_RADIUS)) - 1)
+          <= 1e-12, "ffrsim's relative curvatures: 1 / (2 r) along the axis, (1 / r + 1 / R_c) / 2 across")
+    fh = float(pair.attrs["hertz_max_force_N"])
+    check(abs(fh / force_ref - 1) <= 1e-5,
+          f"ffrsim's elliptical Hertz peak {fh:.4f} N against {force_ref:.4f} N computed here "
+          f"({fh / force_ref - 1:+.1e}; bound 1e-5: the quadrature's and bisection's accuracy)")
     F = pair["normal_force"][:]
     peak = float(F.max())
     d = peak / force_ref - 1

@@ -5,12 +5,15 @@
 // Johnson's shape equation (K and E by the trapezoidal rule on 400,001 points, a / b by
 // bisection, numpy: 1.27500, 2.50071, 8.87618, 18.1871 for B / A = 1.44, 4, 30, 100) and
 // Brewe & Hamrock's fit (NASA TN D-8510, 1977: a / b = 1.0339 (B / A)^0.636; within 3.5 %
-// up to B / A = 30, 6 % off at 100).
+// up to B / A = 30, 6 % off at 100); the relative curvatures of two surfaces at an angle
+// against the eigenvalues of their summed curvature tensors.
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "common/mechanics/hertz.h"
 #include "common/mechanics/hertz_ellipse.h"
@@ -33,6 +36,37 @@ TEST_CASE("elliptical Hertz: the circle's limit", "[hertz]") {
   CHECK(ellipseEccentricity(1.0) == 0.0);
   CHECK(ellipseApproachLength(1e-4, 1e-4) == 1e-4);
   CHECK(ellipseApproachLength(1e-4, 0.0) == 1e-4);  // b not given
+}
+
+TEST_CASE("elliptical Hertz: relative curvatures of two surfaces at an angle", "[hertz]") {
+  // Against the gap's quadratic form: h = x^T (C + C') x / 2 with the curvature tensors
+  // C = k1 d1 d1^T + k2 d2 d2^T; A and B are the eigenvalues of (C + C') / 2.
+  const auto tensor = [](double k1, double k2, double angle) {
+    const Eigen::Vector2d d1(std::cos(angle), std::sin(angle)), d2(-d1(1), d1(0));
+    return Eigen::Matrix2d(k1 * d1 * d1.transpose() + k2 * d2 * d2.transpose());
+  };
+  for (double alpha : {0.0, 0.3, 0.7854, 1.2, M_PI / 2}) {
+    const double k1 = 55.6, k2 = 80.0, kp1 = 0.0, kp2 = 50.0;
+    const Eigen::Vector2d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(
+                                   0.5 * (tensor(k1, k2, 0.0) + tensor(kp1, kp2, alpha)))
+                                   .eigenvalues();
+    const RelativeCurvatures r = relativeCurvatures(k1, k2, kp1, kp2, std::cos(alpha));
+    CHECK(r.A == Approx(ev(0)).epsilon(1e-12));
+    CHECK(r.B == Approx(ev(1)).epsilon(1e-12));
+  }
+  // Aligned; a sphere on a cylinder; equal cylinders crossed at right angles: a circle.
+  const RelativeCurvatures aligned = relativeCurvatures(1.0, 3.0, 2.0, 5.0, 1.0);
+  CHECK(aligned.A == Approx(1.5));
+  CHECK(aligned.B == Approx(4.0));
+  const RelativeCurvatures onCylinder = relativeCurvatures(100.0, 100.0, 0.0, 50.0, 0.3);
+  CHECK(onCylinder.A == Approx(50.0));
+  CHECK(onCylinder.B == Approx(75.0));
+  const RelativeCurvatures parallel = relativeCurvatures(0.0, 50.0, 0.0, 50.0, 1.0);
+  CHECK(parallel.A == Approx(0.0).margin(1e-12));  // parallel cylinders: a line
+  CHECK(parallel.B == Approx(50.0));
+  const RelativeCurvatures square = relativeCurvatures(0.0, 50.0, 0.0, 50.0, std::cos(M_PI / 2));
+  CHECK(square.A == Approx(25.0));
+  CHECK(square.B == Approx(25.0));
 }
 
 TEST_CASE("elliptical Hertz: both curvature equations and the load scaling", "[hertz]") {

@@ -196,6 +196,10 @@ TEST_CASE("designed explicit patch: an elliptical contact point", "[design]") {
   const FacePoint f = facePoint(body, 1, true, {0.5, 1.0, 0.125});
   CHECK(f.curvatures[0] == Approx(0.008 / (0.012 * 0.012)).epsilon(1e-9));
   CHECK(f.curvatures[1] == Approx(0.008 / (0.010 * 0.010)).epsilon(1e-9));
+  // Their directions: along the 12 mm axis (x) and the 10 mm axis (y).
+  REQUIRE(f.directions.size() == 2);
+  CHECK(std::abs(f.directions[0](0)) == Approx(1.0).epsilon(1e-12));
+  CHECK(std::abs(f.directions[1](1)) == Approx(1.0).epsilon(1e-12));
   const double volume = 4.0 / 3.0 * M_PI * 0.012 * 0.010 * 0.008;
   CHECK(patchVolume(body, false) == Approx(volume).epsilon(1e-9));
   const ImpactDesign d =
@@ -214,6 +218,10 @@ TEST_CASE("designed explicit patch: an elliptical contact point", "[design]") {
   // Sized from b, reaching as far as a; not a sphere's point.
   CHECK(std::max(d.finest_arc, d.finest_depth) <= d.contact_minor_radius / 2);
   CHECK(d.surface_radius == 0.0);
+  CHECK(d.principal_curvatures[0] == Approx(f.curvatures[0]).epsilon(1e-12));
+  CHECK(d.principal_curvatures[1] == Approx(f.curvatures[1]).epsilon(1e-12));
+  REQUIRE(d.principal_direction.size() == 3);
+  CHECK(std::abs(d.principal_direction(0)) == Approx(1.0).epsilon(1e-12));
 }
 
 TEST_CASE("built-in sphere turned to its contact direction", "[design]") {
