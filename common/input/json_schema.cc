@@ -181,12 +181,14 @@ void checkConstAndEnum(const YamlDocument& doc, const YAML::Node& schema, const 
   }
 }
 
-// minimum, maximum, exclusiveMinimum, exclusiveMaximum of a number, with its x-unit.
+// minimum, maximum, exclusiveMinimum, exclusiveMaximum of a number, with its x-unit (none
+// for a dimensionless "1").
 void checkBounds(const YamlDocument& doc, const YAML::Node& schema, const YAML::Node& node,
                  const YAML::Node& where, const std::string& key) {
   double value;
   if (!isNumber(node, &value)) return;
-  const std::string unit = schema["x-unit"] ? " " + schema["x-unit"].Scalar() : "";
+  const bool unit_named = schema["x-unit"] && schema["x-unit"].Scalar() != "1";
+  const std::string unit = unit_named ? " " + schema["x-unit"].Scalar() : "";
   auto bound = [&](const char* kw, bool violated, const char* rule) {
     if (schema[kw] && violated) {
       throw inputError(doc, where, key,

@@ -43,7 +43,7 @@ void ObstacleContact::addForces(const ForceContext& at, std::vector<Eigen::Vecto
                                 const ForceStates& states) {
   const int a = bodyA();
   evaluate(at.body(a), at.pose(a), h[a].data(),
-           states.contacts ? &(*states.contacts)[slot()] : nullptr);
+           states.contacts ? &(*states.contacts)[slot()] : nullptr, at.velocities(a));
 }
 
 double ObstacleContact::boxGap(const ForceContext& at) const {
@@ -53,8 +53,28 @@ double ObstacleContact::boxGap(const ForceContext& at) const {
   return obstacle_.boxGap(lo, hi);
 }
 
+void ObstacleContact::addFriction(const BodyModel& A, const BodyPose& pa, const double* sv,
+                                  double fn, Eigen::VectorXd& f, ContactState& s,
+                                  ActivePoint& point) const {
+  FFRIGA_CHECK(sv != nullptr, "friction needs the body's velocities");
+  const int nv = A.numVelocities();
+  const Eigen::MatrixXd PhiT = side_.PhiCt.middleCols(point.i * dim_, dim_).transpose();
+  point.G.resize(nv, dim_);
+  Eigen::VectorXd bv, bp;
+  for (int k = 0; k < dim_; ++k) {
+    A.pointGradients(pa, point.xb, PhiT, Eigen::VectorXd::Unit(dim_, k), bv, bp);
+    point.G.col(k) = bv;
+  }
+  const Eigen::VectorXd v = point.G.transpose() * Eigen::Map<const Eigen::VectorXd>(sv, nv);
+  point.friction = coulombFriction(options_.friction, fn, v, point.n);
+  f += point.friction.force;
+  s.tangential_force.head(dim_) += point.friction.force;
+  s.friction_power += point.friction.power;
+  ++(point.friction.sticking ? s.sticking_points : s.slipping_points);
+}
+
 void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* hA,
-                               ContactState* state) {
+                               ContactState* state, const double* sv) {
   terms_.clear();
   active_.clear();
   terms_formed_ = false;
@@ -83,10 +103,11 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
     const double k = options_.penalty * side_.weight(i);
     const Eigen::VectorXd n = p.normal.head(dim_);
     if (state) pressure_.set(0, i, x, -options_.penalty * p.gap, p.normal);
-    const Eigen::VectorXd f = (-k * p.gap) * n;
+    Eigen::VectorXd f = (-k * p.gap) * n;
+    active_.push_back({i, k, xb, n, {}, {}});
+    if (options_.friction.active()) addFriction(A, pa, sv, -k * p.gap, f, s, active_.back());
     A.addRigidPointForce(pa, xb, f, hA);
     if (A.nq() > 0) fbSum += side_.PhiCt.middleCols(i * dim_, dim_) * (pa.A.transpose() * f);
-    active_.push_back({i, k, xb, n});
     s.force.head(dim_) += f;
     s.max_penetration = std::max(s.max_penetration, -p.gap);
     ++s.active_points;
@@ -95,9 +116,36 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
   if (A.nq() > 0) Eigen::Map<Eigen::VectorXd>(hA + A.numRigidVelocities(), A.nq()) += fbSum;
   if (state) {
     if (dim_ == 2) s.force = Eigen::Vector3d(0.0, s.force(1), 0.0);
-    s.normal_force = s.force.norm();
+    if (dim_ == 2) s.tangential_force = Eigen::Vector3d(0.0, s.tangential_force(1), 0.0);
+    s.normal_force =
+        options_.friction.active() ? (s.force - s.tangential_force).norm() : s.force.norm();
     *state = s;
   }
+}
+
+// Friction's terms (runtime/contact/coulomb_friction.h), with the point's velocity G^T s_v:
+// the damping along e1 and e2, d h / d s_v = -c (G e)(G e)^T, and the normal force's share,
+// h_t = G f_n load with f_n = -k g: d h / d s_p = -k (G load) bp_n^T.
+void ObstacleContact::addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const {
+  const PointFriction& fr = a.friction;
+  const auto add = [&](StiffnessTerm::Kind kind, double k, Eigen::VectorXd bv,
+                       const Eigen::VectorXd& bp) {
+    StiffnessTerm t;
+    t.body_c = bodyA();
+    t.body_t = -1;
+    t.kind = kind;
+    t.k = k;
+    t.bvC = std::move(bv);
+    t.bpC = bp;
+    terms_.push_back(std::move(t));
+  };
+  const Eigen::VectorXd g1 = a.G * fr.e1;
+  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, g1, g1);
+  if (fr.e2.size() > 0) {
+    const Eigen::VectorXd g2 = a.G * fr.e2;
+    add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, g2, g2);
+  }
+  add(StiffnessTerm::Kind::kFrictionLoad, a.k, a.G * fr.load, normal.bpC);
 }
 
 const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
@@ -111,6 +159,7 @@ const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
     term.k = a.k;
     body_->pointGradients(pose_, a.xb, side_.PhiCt.middleCols(a.i * dim_, dim_).transpose(), a.n,
                           term.bvC, term.bpC);
+    if (options_.friction.active()) addFrictionTerms(a, term);
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;

@@ -14,7 +14,9 @@
 // Stiffness terms: one per active point, k = c_p w_i, body_t = -1, from the body's
 // pointGradients as for pairs: the change of n is neglected (none for a plane) and so is the
 // change of the lever arm under rotation (the rotational rows' (Phi_i dq) x A^T f_i): the
-// Newton matrix may be approximate.
+// Newton matrix may be approximate. With a friction coefficient every active point also
+// carries the regularised Coulomb force of runtime/contact/coulomb_friction.h at its velocity
+// (the obstacle is at rest), with its damping and normal-force terms in the Newton matrix.
 #pragma once
 
 #include <string>
@@ -43,8 +45,9 @@ class ObstacleContact : public SurfaceContact {
   Penetration deepestPenetration(const ForceContext& at) const override;
   const std::vector<StiffnessTerm>& stiffnessTerms() const override;
   // Adds the generalised contact forces on A to hA (layout of A's velocities) and fills
-  // `state` if given.
-  void evaluate(const BodyModel& A, const BodyPose& pa, double* hA, ContactState* state);
+  // `state` if given; sv: A's velocities (needed with friction only).
+  void evaluate(const BodyModel& A, const BodyPose& pa, double* hA, ContactState* state,
+                const double* sv = nullptr);
   // The world position of the contact surface's centre and its outward normal there
   // (undeformed surface at `pa`): for the scene's check that the surface faces the obstacle.
   void surfaceCentre(const BodyPose& pa, Eigen::Vector3d& x, Eigen::Vector3d& n) const;
@@ -66,7 +69,17 @@ class ObstacleContact : public SurfaceContact {
     int i = 0;
     double k = 0.0;
     Eigen::VectorXd xb, n;
+    // With friction: the point's velocity gradients along the world axes (nv x d: its
+    // velocity is G^T s_v) and its friction's linearisation.
+    Eigen::MatrixXd G;
+    PointFriction friction;
   };
+  // The point's friction at its normal force fn (N): adds the tangential force to f, its
+  // figures to s, and keeps G and the linearisation in `point`.
+  void addFriction(const BodyModel& A, const BodyPose& pa, const double* sv, double fn,
+                   Eigen::VectorXd& f, ContactState& s, ActivePoint& point) const;
+  // The point's friction terms for the Newton matrix (beside its normal term `normal`).
+  void addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* body_ = nullptr;
   BodyPose pose_;

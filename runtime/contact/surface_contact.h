@@ -14,13 +14,14 @@
 #include <Eigen/Dense>
 
 #include "runtime/contact/contact_pressure.h"
+#include "runtime/contact/coulomb_friction.h"
 #include "runtime/forces/force_element.h"
 
 namespace ffriga {
 
 // Diagnostics of one pair at one state (a ContactPair averages them over its two roles).
 struct ContactState {
-  double normal_force = 0.0;  // N, magnitude of the resultant contact force on body A
+  double normal_force = 0.0;  // N, magnitude of the resultant normal contact force on body A
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, resultant on body A, inertial
                                                     // (axisymmetric: (0, F_y, 0), the ring)
   double max_penetration = 0.0;                     // m, largest -g_n over both roles (0 if apart)
@@ -34,6 +35,12 @@ struct ContactState {
   // but gets no force: the contact region is too small for the motion (0 while every
   // penetrating point has a proper foot point).
   double beyond_edge_penetration = 0.0;
+  // Friction (pairs with a friction coefficient; runtime/contact/coulomb_friction.h): the
+  // tangential part of `force` (N, inertial), the power the friction takes out (W >= 0),
+  // the active points that stick (|v_t| < eps) and slip.
+  Eigen::Vector3d tangential_force = Eigen::Vector3d::Zero();
+  double friction_power = 0.0;
+  int sticking_points = 0, slipping_points = 0;
 };
 
 // The deepest initial penetration of a pair (SurfaceContact::deepestPenetration).
@@ -58,6 +65,8 @@ struct ContactOptions {
   // faces' slightly different lateral strains move a point just off the other face. Curved
   // targets have none (their region's edge is where a growing contact must stop the run).
   double edge_reach = -1.0;
+  // Coulomb friction (default none: frictionless, bit for bit as before friction existed).
+  FrictionLaw friction;
 };
 
 class SurfaceContact : public ForceElement {

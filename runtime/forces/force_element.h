@@ -27,11 +27,22 @@ struct LineForceState;  // runtime/forces/line_force.h
 // Linearisation of one force along a direction n between a point of body_c and a point of
 // body_t (Eq. 17-18, a contact pair's active collocation point): with g = n^T (x_C - x_T),
 // h_C = bvC phi, h_T = -bvT phi, phi = -k g:  d h / d s_p = -k [bvC; -bvT] [bpC; -bpT]^T
-// (change of n neglected). k in N/m.
+// (change of n neglected). k in N/m. Friction (runtime/contact/coulomb_friction.h) adds
+// terms of the same form: its damping along a tangent t, d h / d s_v = -c [bvC; -bvT]
+// [bvC; -bvT]^T with bp = bv (the point's velocity along t is bv^T s_v; k = c in N s/m), and
+// its dependence on the normal force, d h / d s_p with bv along the friction force's
+// direction and bp along the normal.
 struct StiffnessTerm {
+  enum class Kind {
+    kNormal,           // the penalty's symmetric normal stiffness (d/d s_p)
+    kFrictionLoad,     // friction through the normal force (d/d s_p; not symmetric)
+    kFrictionDamping,  // friction's velocity dependence (d/d s_v)
+  };
   int body_c = 0, body_t = 0;  // system body indices
-  double k = 0.0;              // N/m
+  double k = 0.0;              // N/m (kFrictionDamping: N s/m)
   Eigen::VectorXd bvC, bpC, bvT, bpT;
+  Kind kind = Kind::kNormal;
+  bool onVelocities() const { return kind == Kind::kFrictionDamping; }
 };
 
 // The bodies' state at which force elements are evaluated (given by the system).

@@ -39,6 +39,8 @@ struct ConnectionLayout {
   std::string end_a, end_b;  // body names (pairs) or BODY.MARKER / ground (joints, forces)
   std::string region_a, region_b;  // contact pairs: the bodies' contact regions ("": none)
   double penalty_factor = 0.0;  // contact pairs: c_p, N/m^3
+  // Contact pairs with friction (runtime/contact/coulomb_friction.h): mu > 0 and eps (m/s).
+  double friction_coefficient = 0.0, slip_velocity = 0.0;
   // A pair with a rigid obstacle (end_b): its shape ("plane", "sphere"; empty for two
   // bodies), point (plane: p, sphere: centre; m, inertial), normal (plane) and radius (m;
   // plane: 0 where infinite).
@@ -87,6 +89,10 @@ struct ContactSample {
   double max_penetration = 0.0;                     // m
   double active_points = 0.0;                       // count
   double projection_failures = 0.0;                 // count
+  // With friction: the tangential part of `force` (N, inertial), the active points that
+  // stick and slip (counts).
+  Eigen::Vector3d tangential_force = Eigen::Vector3d::Zero();
+  double sticking_points = 0.0, slipping_points = 0.0;
 };
 
 // A contact pair's pressure field at one state (runtime/contact/contact_pressure.h), one row

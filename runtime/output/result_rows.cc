@@ -57,36 +57,60 @@ void ResultRows::createBodies(const OutputLayout& layout) {
   }
 }
 
+namespace {
+
+// A pair's description (attributes and the obstacle's data), written once when the file is
+// created (a restart appends rows to what is there: writing the obstacle's datasets again
+// failed, and every restart of a run with an obstacle with it).
+void writeContactDescription(const h5::Context& c, hid_t g, const ConnectionLayout& pair) {
+  h5::writeAttribute(c, g, "body_a", pair.end_a);
+  h5::writeAttribute(c, g, "body_b", pair.end_b);
+  h5::writeAttribute(c, g, "region_a", pair.region_a);
+  if (!pair.region_b.empty()) h5::writeAttribute(c, g, "region_b", pair.region_b);
+  h5::writeAttribute(c, g, "penalty_factor", pair.penalty_factor);
+  h5::writeAttribute(c, g, "penalty_factor_unit", std::string("N/m^3"));
+  if (pair.friction_coefficient > 0.0) {
+    h5::writeAttribute(c, g, "friction_coefficient", pair.friction_coefficient);
+    h5::writeAttribute(c, g, "slip_velocity_m_s", pair.slip_velocity);
+  }
+  if (!pair.obstacle_shape.empty()) {  // body_b is a rigid obstacle fixed in space
+    h5::writeAttribute(c, g, "obstacle_shape", pair.obstacle_shape);
+    h5::writeAttribute(c, g, "obstacle_radius_m", pair.obstacle_radius);
+    h5::writeVector(c, g, "obstacle_point", pair.obstacle_point, "m");
+    if (pair.obstacle_shape == "plane")
+      h5::writeVector(c, g, "obstacle_normal", pair.obstacle_normal, "1");
+    if (pair.obstacle_shape == "cylinder")
+      h5::writeVector(c, g, "obstacle_axis", pair.obstacle_normal, "1");
+  }
+}
+
+}  // namespace
+
 void ResultRows::createContacts(const OutputLayout& layout) {
   const h5::Context c = file_.context();
   h5::Handle contacts = file_.group(file_.id(), "contacts");
   for (const ConnectionLayout& pair : layout.contacts) {
     h5::Handle g = file_.group(contacts.id(), pair.name);
-    h5::writeAttribute(c, g.id(), "body_a", pair.end_a);
-    h5::writeAttribute(c, g.id(), "body_b", pair.end_b);
-    h5::writeAttribute(c, g.id(), "region_a", pair.region_a);
-    if (!pair.region_b.empty()) h5::writeAttribute(c, g.id(), "region_b", pair.region_b);
-    h5::writeAttribute(c, g.id(), "penalty_factor", pair.penalty_factor);
-    h5::writeAttribute(c, g.id(), "penalty_factor_unit", std::string("N/m^3"));
-    if (!pair.obstacle_shape.empty()) {  // body_b is a rigid obstacle fixed in space
-      h5::writeAttribute(c, g.id(), "obstacle_shape", pair.obstacle_shape);
-      h5::writeAttribute(c, g.id(), "obstacle_radius_m", pair.obstacle_radius);
-      h5::writeVector(c, g.id(), "obstacle_point", pair.obstacle_point, "m");
-      if (pair.obstacle_shape == "plane")
-        h5::writeVector(c, g.id(), "obstacle_normal", pair.obstacle_normal, "1");
-      if (pair.obstacle_shape == "cylinder")
-        h5::writeVector(c, g.id(), "obstacle_axis", pair.obstacle_normal, "1");
-    }
+    if (!file_.appending()) writeContactDescription(c, g.id(), pair);
     ContactSeries s;
     s.normal_force = &file_.series(g.id(), "normal_force", 0, "N",
-                                   "magnitude of the resultant contact force on body_a "
-                                   "(axisymmetric: over the whole ring)");
+                                   "magnitude of the resultant normal contact force on "
+                                   "body_a (axisymmetric: over the whole ring; with "
+                                   "friction, force less tangential_force)");
     s.force = &file_.series(g.id(), "force", 3, "N", "resultant contact force on body_a, inertial");
     s.max_penetration = &file_.series(g.id(), "max_penetration", 0, "m", "largest -g_n");
     s.active_points = &file_.series(g.id(), "active_points", 0, "1",
                                     "collocation points in contact (both roles)", true);
     s.projection_failures = &file_.series(g.id(), "projection_failures", 0, "1",
                                           "closest-point searches that did not converge", true);
+    if (pair.friction_coefficient > 0.0) {
+      s.tangential_force = &file_.series(g.id(), "tangential_force", 3, "N",
+                                         "friction: the tangential part of force, inertial");
+      s.sticking_points = &file_.series(g.id(), "sticking_points", 0, "1",
+                                        "active points slipping slower than slip_velocity", true);
+      s.slipping_points = &file_.series(g.id(), "slipping_points", 0, "1",
+                                        "active points slipping at slip_velocity or faster", true);
+    }
     contacts_.push_back(s);
   }
 }
@@ -100,7 +124,8 @@ void ResultRows::createEnergies() {
   force_energy_ = &file_.series(energy.id(), "force_elements", 0, "J",
                                 "potential energy of the force elements (springs, Hertz contact)");
   dissipated_ = &file_.series(energy.id(), "dissipated", 0, "J",
-                              "energy taken out by modal damping and dampers since t = 0");
+                              "energy taken out by modal damping, dampers and friction since "
+                              "t = 0");
 }
 
 void ResultRows::createJoints(const OutputLayout& layout) {
@@ -158,6 +183,11 @@ void ResultRows::write(const OutputSample& sample) {
     contacts_[c].max_penetration->append(&pair.max_penetration);
     contacts_[c].active_points->append(&pair.active_points);
     contacts_[c].projection_failures->append(&pair.projection_failures);
+    if (contacts_[c].tangential_force) {
+      contacts_[c].tangential_force->append(pair.tangential_force.data());
+      contacts_[c].sticking_points->append(&pair.sticking_points);
+      contacts_[c].slipping_points->append(&pair.slipping_points);
+    }
   }
   kinetic_->append(&sample.energy.kinetic);
   elastic_->append(&sample.energy.elastic);

@@ -34,6 +34,8 @@ class ResultRows : public OutputSink {
   std::vector<BodySeries> bodies_;
   struct ContactSeries {
     Series *normal_force, *force, *max_penetration, *active_points, *projection_failures;
+    // Pairs with friction only (else null).
+    Series *tangential_force = nullptr, *sticking_points = nullptr, *slipping_points = nullptr;
   };
   std::vector<ContactSeries> contacts_;
   struct JointSeries {

@@ -37,9 +37,10 @@ std::optional<HertzSphere> sphereOf(const BodyModel& body) {
   HertzSphere s;
   s.radius = sid.geometry.radius;
   if (designedPatch(sid))
-    s.radius = sid.design.surface_radius > 0.0
-                   ? sid.design.surface_radius
-                   : 2.0 / (sid.design.principal_curvatures(0) + sid.design.principal_curvatures(1));
+    s.radius =
+        sid.design.surface_radius > 0.0
+            ? sid.design.surface_radius
+            : 2.0 / (sid.design.principal_curvatures(0) + sid.design.principal_curvatures(1));
   s.youngs_modulus = body.nq() > 0 ? sid.material.youngs_modulus
                                    : std::numeric_limits<double>::infinity();
   s.poisson_ratio = sid.material.poisson_ratio;
@@ -85,7 +86,7 @@ std::optional<HertzReference> obstacleReference(const Scene& scene, const Obstac
   const bool cylinder = c.obstacle().shape() == RigidObstacle::Shape::kCylinder;
   const BodyModel& body = scene.system->body(c.bodyA());
   if (cylinder && body.sid().space_dim != 3) return std::nullopt;  // a coaxial ring
-  if (designedPatch(body.sid())) return std::nullopt;  // no centre
+  if (designedPatch(body.sid())) return std::nullopt;              // no centre
   const auto sa = sphereOf(body);
   if (!sa) return std::nullopt;
   const Eigen::Vector3d& r = scene.initial_position[c.bodyA()];

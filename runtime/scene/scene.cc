@@ -74,6 +74,8 @@ class SceneBuilder {
   void addContacts();
   int contactSurface(std::size_t c, int i, int body) const;
   ContactOptions contactOptions(std::size_t c, int body_a, int body_b) const;
+  void readFriction(const YAML::Node& C, const std::string& k, int body_b,
+                    FrictionLaw& friction) const;
   double automaticPenalty(std::size_t c, int body_a, int body_b) const;
   void warnFacingAway();
   void readIntegrator();
@@ -215,6 +217,12 @@ void SceneBuilder::addContacts() {
 // below that at 0.001 and 0.023 % below that at 0.00025.
 constexpr double kAutoPenaltyPenetration = 0.002;
 
+// The default slip velocity of friction's regularisation (schemas/contact_friction.md): a
+// sticking point creeps at most at about this speed, which over a contact of 100 us moves
+// it 0.1 nm, against tangential displacements of tens of nanometres and more in the
+// impacts this tool is for (mu times Hertz's approach of micrometres).
+constexpr double kDefaultSlipVelocity = 1e-6;
+
 // Pair c's c_p for penalty_factor: auto, from the bodies' materials and designed contact
 // radii (body_b < 0: a rigid obstacle, infinitely stiff).
 double SceneBuilder::automaticPenalty(std::size_t c, int body_a, int body_b) const {
@@ -266,7 +274,29 @@ ContactOptions SceneBuilder::contactOptions(std::size_t c, int body_a, int body_
   o.penetration_tolerance =
       doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
   o.edge_reach = doubleOr(doc(), C["edge_reach"], k + ".edge_reach", -1.0);
+  readFriction(C, k, body_b, o.friction);
   return o;
+}
+
+// Pair c's Coulomb friction (runtime/contact/coulomb_friction.h): a coefficient >= 0 (0 or
+// absent: frictionless) and the regularisation's slip velocity (m/s, default
+// kDefaultSlipVelocity). Between two bodies not yet: refused.
+void SceneBuilder::readFriction(const YAML::Node& C, const std::string& k, int body_b,
+                                FrictionLaw& friction) const {
+  friction.coefficient =
+      doubleOr(doc(), C["friction_coefficient"], k + ".friction_coefficient", 0.0);
+  if (!(friction.coefficient >= 0.0) || !std::isfinite(friction.coefficient))
+    throw inputError(doc(), C["friction_coefficient"], k + ".friction_coefficient",
+                     Str() << "expected a finite number >= 0, found " << friction.coefficient);
+  friction.slip_velocity =
+      doubleOr(doc(), C["slip_velocity"], k + ".slip_velocity", kDefaultSlipVelocity);
+  if (!(friction.slip_velocity > 0.0) || !std::isfinite(friction.slip_velocity))
+    throw inputError(doc(), C["slip_velocity"], k + ".slip_velocity",
+                     Str() << "expected a finite number > 0 m/s, found " << friction.slip_velocity);
+  if (friction.active() && body_b >= 0)
+    throw inputError(doc(), C["friction_coefficient"], k + ".friction_coefficient",
+                     "friction between two bodies is not implemented yet: only a body against "
+                     "a rigid obstacle (issue 28)");
 }
 
 // The time span, the output interval and the integrator's tolerances and limits.

@@ -56,6 +56,9 @@ void sampleContacts(MultibodySystem& system, const Eigen::VectorXd& y, OutputSam
     s.max_penetration = st.max_penetration;
     s.active_points = st.active_points;
     s.projection_failures = st.projection_failures;
+    s.tangential_force = st.tangential_force;
+    s.sticking_points = st.sticking_points;
+    s.slipping_points = st.slipping_points;
     out.contacts.push_back(s);
     out.energy.contact += st.energy;
   }
@@ -103,6 +106,8 @@ OutputLayout outputLayout(const MultibodySystem& system) {
     l.collocation_role = pair.pressureField().role;
     l.collocation_weight = pair.pressureField().weight;
     l.role_factor = pair.pressureField().factor;
+    l.friction_coefficient = pair.options().friction.coefficient;
+    l.slip_velocity = pair.options().friction.slip_velocity;
     if (const auto* o = dynamic_cast<const ObstacleContact*>(&pair)) {
       l.obstacle_shape = o->obstacle().shapeName();
       l.obstacle_point = o->obstacle().point();

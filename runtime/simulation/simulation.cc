@@ -187,6 +187,24 @@ double dissipatedBetween(const BdfIntegrator& integ, const MultibodySystem& syst
   return 0.5 * (b - a) * sum;
 }
 
+// The friction's power (W) at y: the contact pairs evaluated there.
+double frictionPower(MultibodySystem& system, const double* y) {
+  std::vector<Eigen::VectorXd> h;
+  std::vector<ContactState> states;
+  system.contactForces(y, h, &states);
+  double power = 0.0;
+  for (const ContactState& s : states) power += s.friction_power;
+  return power;
+}
+
+// The same at the end of the step just taken: the last right-hand side's pairs (CVODE
+// evaluates it at the accepted state to within the Newton tolerance).
+double frictionPowerAtStepEnd(const MultibodySystem& system) {
+  double power = 0.0;
+  for (const ContactState& s : system.lastRhsContacts()) power += s.friction_power;
+  return power;
+}
+
 // The output rows at `times` inside the step that ended at t, by interpolation
 // (CVodeGetDky); y is scratch; `dissipatedAt` gives /energy/dissipated at a time inside the
 // step.
@@ -257,9 +275,11 @@ class TimeLoop {
   int phase_ = 0;  // 0 before contact, 1 during, 2 after
   double t_ = 0.0, tPrev_ = 0.0;
   SolverCounts before_;  // of the parts of the run before a restart
-  // /energy/dissipated at tPrev_ (J); whether anything dissipates at all.
+  // /energy/dissipated at tPrev_ (J); whether anything dissipates at all; with friction,
+  // the friction's power at tPrev_ (W).
   double dissipated_ = 0.0;
-  bool dissipates_ = false;
+  bool dissipates_ = false, friction_ = false;
+  double frictionPower_ = 0.0;
   Eigen::VectorXd work_;
   double wallBefore_ = 0.0;
   IntegratorStats last_;
@@ -267,6 +287,8 @@ class TimeLoop {
 
 void TimeLoop::begin(const Eigen::VectorXd& y, const RestartRecord* resume) {
   dissipates_ = system_.dissipates();
+  friction_ = system_.hasFriction();
+  if (friction_) frictionPower_ = frictionPower(system_, y.data());
   work_.resize(y.size());
   if (resume) {
     t_ = resume->time;
@@ -318,12 +340,22 @@ void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::Vect
   while (nextOut_ <= nOut_ && outputTime(nextOut_) <= t_ * (1.0 + 1e-14))
     times.push_back(outputTime(nextOut_++));
   addContactOutputs(settings_.contact_output_interval, contact || phase_ == 1, tPrev_, t_, times);
+  // Friction's work: the trapezoidal rule on its power at the step's ends (the last
+  // right-hand side's, at the accepted state), linear inside the step.
+  const double frictionEnd = friction_ ? frictionPowerAtStepEnd(system_) : 0.0;
   auto dissipatedAt = [&](double to) {
-    return dissipates_ ? dissipated_ + dissipatedBetween(integ, system_, tPrev_, to, work_)
-                       : 0.0;
+    if (!dissipates_) return 0.0;
+    double w = dissipated_ + dissipatedBetween(integ, system_, tPrev_, to, work_);
+    if (friction_ && to > tPrev_) {
+      const double pTo =
+          frictionPower_ + (frictionEnd - frictionPower_) * (to - tPrev_) / (t_ - tPrev_);
+      w += 0.5 * (to - tPrev_) * (frictionPower_ + pTo);
+    }
+    return w;
   };
   writeOutputs(integ, system_, writer_, times, t_, y, dissipatedAt);
   dissipated_ = dissipatedAt(t_);
+  frictionPower_ = frictionEnd;
   if (contact && phase_ != 1) ++f.contact_events;
   trackFirstContact(contact, stepForce, phase_, tPrev_, t_, f);
   if (contact)

@@ -60,7 +60,14 @@ bool MultibodySystem::dissipates() const {
         (b->damping().cwiseAbs().transpose() * dynamic).any())
       return true;
   }
-  return !line_forces_.empty();  // evaluated: zero for undamped springs and Hertz contacts
+  // Line forces are evaluated (zero power for undamped springs and Hertz contacts).
+  return hasFriction() || !line_forces_.empty();
+}
+
+bool MultibodySystem::hasFriction() const {
+  for (int c = 0; c < numContacts(); ++c)
+    if (contact(c).options().friction.active()) return true;
+  return false;
 }
 
 double MultibodySystem::dissipationPower(const double* y) const {

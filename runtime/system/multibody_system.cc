@@ -152,7 +152,7 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
         for (int Y = 0; Y < 2; ++Y) {
           if (bodiesOf[Y] < 0) continue;
           const double sign = (X == Y) ? -1.0 : 1.0;
-          const int po = pos_offset_[bodiesOf[Y]];
+          const int po = t.onVelocities() ? vel_offset_[bodiesOf[Y]] : pos_offset_[bodiesOf[Y]];
           D.middleCols(po, bp[Y]->size()) += (sign * t.k) * (*bv[X]) * bp[Y]->transpose();
         }
       }
@@ -264,11 +264,12 @@ void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
   for (const auto& element : forces_) {
     for (const StiffnessTerm& t : element->stiffnessTerms()) {
       const int bc = t.body_c, bt = t.body_t;
+      const std::vector<int>& of = t.onVelocities() ? vel_offset_ : pos_offset_;
       J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
-      J.V.col(col).segment(pos_offset_[bc], t.bpC.size()) += t.bpC;
+      J.V.col(col).segment(of[bc], t.bpC.size()) += t.bpC;
       if (bt >= 0) {  // else a target fixed in space
         J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
-        J.V.col(col).segment(pos_offset_[bt], t.bpT.size()) -= t.bpT;
+        J.V.col(col).segment(of[bt], t.bpT.size()) -= t.bpT;
       }
       ++col;
     }

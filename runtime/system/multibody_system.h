@@ -135,11 +135,14 @@ class MultibodySystem : public OdeSystem {
   std::vector<JointReaction> jointReactions(const double* y);
   // The force elements' states at y.
   std::vector<LineForceState> lineForceStates(const double* y) const;
-  // True if anything in the system dissipates energy: a body's modal damping De != 0 or a
-  // force element with a damper.
+  // True if anything in the system dissipates energy: a body's modal damping De != 0, a
+  // force element with a damper, or a contact pair with friction.
   bool dissipates() const;
+  // True if a contact pair has friction (runtime/contact/coulomb_friction.h).
+  bool hasFriction() const;
   // The power (W) that modal damping (qdot^T De qdot of each body) and the force elements'
-  // dampers take out of the system at y; the time integral is the result's
+  // dampers take out of the system at y; with the friction's power (ContactState::
+  // friction_power, from the right-hand sides) its time integral is the result's
   // /energy/dissipated (runtime/simulation/simulation.cc).
   double dissipationPower(const double* y) const;
   // Newton-matrix Jacobian: difference quotients of each body's own rates with the contact

@@ -13,8 +13,14 @@
 // manifold by a finite amount that the next step's error test sees at any step size (seen:
 // "error test failed repeatedly" at h = 5e-13 s on sphere2d_g3 as two points separated).
 // The projection removes that offset; it costs one or two contact evaluations per step.
+// With friction (runtime/contact/coulomb_friction.h) the tangential forces follow the normal
+// ones at the velocities of the moment: their kFrictionLoad terms k_t u_t v_t^T (u_t along
+// the friction force, v_t along the normal) join the matrix, which is then not symmetric
+// (the Woodbury formula with an LU of the capacitance); without them Newton converged only
+// linearly, by about mu per iteration. The velocity terms do not enter (q_s only moves).
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "common/base/error.h"
@@ -48,24 +54,44 @@ std::vector<Coordinate> quasiStaticCoordinates(const MultibodySystem& system,
 }
 
 // Contact stiffness on the quasi-static coordinates: the columns u_t of U (n x P), the
-// quasi-static rows of [bvC; -bvT] of each stiffness term t that reaches them, and the
-// weights W = diag(k_t).
+// quasi-static rows of [bvC; -bvT] of each normal stiffness term t that reaches them, and the
+// weights W = diag(k_t); friction's load terms as pairs (u_t, v_t) in `load` (v_t from
+// [bpC; -bpT]: the elastic rows of bp and bv agree) with their weights in `load_weights`.
+struct StiffnessColumns {
+  std::vector<Eigen::VectorXd> columns;
+  std::vector<double> weights;
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> load;
+  std::vector<double> load_weights;
+};
+
 void contactStiffnessColumns(const MultibodySystem& system, const std::vector<Coordinate>& list,
-                             std::vector<Eigen::VectorXd>& columns, std::vector<double>& weights) {
+                             StiffnessColumns& out) {
   const int n = static_cast<int>(list.size());
+  auto rows = [&](const StiffnessTerm& t, const Eigen::VectorXd& c, const Eigen::VectorXd& tt,
+                  bool positions, bool& any) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+    for (int j = 0; j < n; ++j) {
+      const Coordinate& q = list[j];
+      const int at = positions ? q.position - system.positionOffset(q.body) : q.velocity;
+      if (q.body == t.body_c) u(j) += c(at);
+      if (q.body == t.body_t) u(j) -= tt(at);
+      any = any || q.body == t.body_c || q.body == t.body_t;
+    }
+    return u;
+  };
   for (int e = 0; e < system.numForceElements(); ++e) {
     for (const StiffnessTerm& t : system.forceElement(e).stiffnessTerms()) {
-      Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+      if (t.onVelocities() || !(t.k > 0.0)) continue;  // a point on the axis: no ring weight
       bool any = false;
-      for (int j = 0; j < n; ++j) {
-        const Coordinate& q = list[j];
-        if (q.body == t.body_c) u(j) += t.bvC(q.velocity);
-        if (q.body == t.body_t) u(j) -= t.bvT(q.velocity);
-        any = any || q.body == t.body_c || q.body == t.body_t;
+      Eigen::VectorXd u = rows(t, t.bvC, t.bvT, false, any);
+      if (!any) continue;
+      if (t.kind == StiffnessTerm::Kind::kNormal) {
+        out.columns.push_back(std::move(u));
+        out.weights.push_back(t.k);
+      } else {
+        out.load.emplace_back(std::move(u), rows(t, t.bpC, t.bpT, true, any));
+        out.load_weights.push_back(t.k);
       }
-      if (!any || !(t.k > 0.0)) continue;  // a point on the axis has no ring weight
-      columns.push_back(std::move(u));
-      weights.push_back(t.k);
     }
   }
 }
@@ -75,6 +101,7 @@ void contactStiffnessColumns(const MultibodySystem& system, const std::vector<Co
 void woodburyStep(const Eigen::VectorXd& k, const Eigen::VectorXd& r,
                   const std::vector<Eigen::VectorXd>& columns, const std::vector<double>& weights,
                   Eigen::VectorXd& dq) {
+  // (the symmetric case: normal terms only)
   const int n = static_cast<int>(k.size());
   dq = r.cwiseQuotient(k);
   const int P = static_cast<int>(columns.size());
@@ -87,6 +114,32 @@ void woodburyStep(const Eigen::VectorXd& k, const Eigen::VectorXd& r,
     const Eigen::LDLT<Eigen::MatrixXd> ldlt(C);
     dq -= KU * ldlt.solve(U.transpose() * dq);
   }
+}
+
+// The same with friction's load terms: A = K + L R^T with L = [U W, U_l W_l], R = [U, V_l],
+// A^-1 = K^-1 - K^-1 L (I + R^T K^-1 L)^-1 R^T K^-1 (an LU of the capacitance).
+void woodburyStep(const Eigen::VectorXd& k, const Eigen::VectorXd& r, const StiffnessColumns& s,
+                  Eigen::VectorXd& dq) {
+  if (s.load.empty()) {
+    woodburyStep(k, r, s.columns, s.weights, dq);
+    return;
+  }
+  const int n = static_cast<int>(k.size());
+  const int P = static_cast<int>(s.columns.size()), Q = static_cast<int>(s.load.size());
+  Eigen::MatrixXd L(n, P + Q), R(n, P + Q);
+  for (int p = 0; p < P; ++p) {
+    L.col(p) = s.weights[p] * s.columns[p];
+    R.col(p) = s.columns[p];
+  }
+  for (int p = 0; p < Q; ++p) {
+    L.col(P + p) = s.load_weights[p] * s.load[p].first;
+    R.col(P + p) = s.load[p].second;
+  }
+  const Eigen::MatrixXd KL = k.cwiseInverse().asDiagonal() * L;
+  Eigen::MatrixXd C = R.transpose() * KL;
+  C.diagonal().array() += 1.0;
+  dq = r.cwiseQuotient(k);
+  dq -= KL * C.partialPivLu().solve(R.transpose() * dq);
 }
 
 // Adds dq to the quasi-static coordinates in y; change and size (m): the largest point
@@ -141,10 +194,9 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
   for (int it = 0; it < kMaxIterations; ++it) {
     quasiStaticAccelerations(y, first, accel);
     for (int j = 0; j < n; ++j) r(j) = accel[list[j].body](list[j].velocity);
-    std::vector<Eigen::VectorXd> columns;
-    std::vector<double> weights;
-    contactStiffnessColumns(*this, list, columns, weights);
-    woodburyStep(k, r, columns, weights, dq);
+    StiffnessColumns columns;
+    contactStiffnessColumns(*this, list, columns);
+    woodburyStep(k, r, columns, dq);
     if (!dq.allFinite()) return false;
     double change = 0.0, size = 0.0;  // m: the largest point displacement of a coordinate
     applyCorrection(list, dq, y, change, size);

@@ -618,6 +618,100 @@ TEST_CASE("obstacle contact: stiffness terms are the derivative of the forces", 
   }
 }
 
+TEST_CASE("obstacle contact with friction: Coulomb's bound and its terms", "[contact][friction]") {
+  // The cap of the stiffness test on the same plane, moving: random s_v. Every active point
+  // carries f_t = -mu f_n v_t / sqrt(|v_t|^2 + eps^2) (coulomb_friction.h), so the
+  // tangential resultant stays below mu times the normal one, the friction's power is >= 0,
+  // and the kFrictionDamping terms are d h / d s_v exactly (the positions are held: n, the
+  // lever arms and the normal forces do not move), checked against central differences
+  // whose truncation, O(step^2) relative to (step / eps)^2 = (1e-7 / 3e-3)^2 at |v_t| ~ eps,
+  // and round-off, eps |h| / step ~ 2e-16 * 20 N / 1e-7 m/s = 4e-8 N s/m, sit below the
+  // tolerance of 1e-6 relative to the largest term. The kFrictionLoad term with the normal
+  // term gives d h / d s_p along the normal translation exactly (the points' velocities do
+  // not depend on the translation): central differences as in the stiffness test.
+  Draw draw(303);
+  const Cap cap = makeCap(3, draw);
+  FloatingBody3d body("cap", cap.sid);
+  const Eigen::Vector3d p(-0.03, 0.02, 0.21), normal(-0.08, 0.12, 2.0);
+  const Eigen::Vector3d n = normal.normalized();
+  ContactOptions opt;
+  opt.penalty = kPenalty;
+  opt.friction.coefficient = 0.3;
+  opt.friction.slip_velocity = 3e-3;  // m/s: some points stick, some slip (below)
+  ObstacleContact pair("cap-floor", 0, body, 0, RigidObstacle::plane("floor", p, normal, 0.0), opt);
+  const Eigen::VectorXd sp =
+      positions(Eigen::Vector3d(0.005, 0.01, -0.004), Eigen::Vector4d(1, -0.02, 0.01, 0.03),
+                Eigen::Vector3d(-0.012, 0.02, 0.008));
+  const int nv = body.numVelocities();
+  Eigen::VectorXd sv(nv);
+  sv << 2e-3, -1e-3, 5e-4, 3e-3, -2e-3, 1e-3, 0.01, -0.02, 0.015;
+  auto forces = [&](const Eigen::VectorXd& at, const Eigen::VectorXd& vel, ContactState& st) {
+    Eigen::VectorXd h = Eigen::VectorXd::Zero(nv);
+    pair.evaluate(body, body.pose(at.data()), h.data(), &st, vel.data());
+    return h;
+  };
+  ContactState s0;
+  const Eigen::VectorXd h0 = forces(sp, sv, s0);
+  REQUIRE(s0.active_points >= 10);
+  CHECK(s0.sticking_points + s0.slipping_points == s0.active_points);
+  CHECK(s0.sticking_points > 0);
+  CHECK(s0.slipping_points > 0);
+  CHECK(s0.tangential_force.dot(n) == Approx(0.0).margin(1e-12 * s0.normal_force));
+  CHECK(s0.tangential_force.norm() < 0.3 * s0.normal_force);
+  CHECK(s0.tangential_force.norm() > 0.01 * s0.normal_force);
+  CHECK(s0.friction_power > 0.0);
+  CHECK((s0.force - s0.tangential_force).norm() == Approx(s0.normal_force).epsilon(1e-14));
+  // Frictionless, the same state: the normal force is the same; no tangential part.
+  ContactOptions frictionless = opt;
+  frictionless.friction = FrictionLaw{};
+  ObstacleContact plain("cap-floor", 0, body, 0, RigidObstacle::plane("floor", p, normal, 0.0),
+                        frictionless);
+  Eigen::VectorXd hPlain = Eigen::VectorXd::Zero(nv);
+  ContactState sPlain;
+  plain.evaluate(body, body.pose(sp.data()), hPlain.data(), &sPlain);
+  CHECK(sPlain.tangential_force.isZero(0.0));
+  CHECK(sPlain.normal_force == Approx(s0.normal_force).epsilon(1e-14));
+
+  const std::vector<StiffnessTerm> terms = pair.stiffnessTerms();  // at (sp, sv)
+  int damping = 0, load = 0;
+  for (const StiffnessTerm& t : terms) {
+    damping += t.kind == StiffnessTerm::Kind::kFrictionDamping;
+    load += t.kind == StiffnessTerm::Kind::kFrictionLoad;
+  }
+  CHECK(damping == 2 * s0.active_points);
+  CHECK(load == s0.active_points);
+  auto predicted = [&](const Eigen::VectorXd& d, bool velocities) {
+    Eigen::VectorXd dh = Eigen::VectorXd::Zero(nv);
+    for (const StiffnessTerm& t : terms)
+      if (t.onVelocities() == velocities) dh -= t.k * t.bvC * t.bpC.dot(d);
+    return dh;
+  };
+  const double step = 1e-7;
+  for (int j = 0; j < nv; ++j) {
+    INFO("velocity " << j);
+    const Eigen::VectorXd d = Eigen::VectorXd::Unit(nv, j);
+    ContactState a, b;
+    const Eigen::VectorXd fd =
+        (forces(sp, sv + step * d, a) - forces(sp, sv - step * d, b)) / (2.0 * step);
+    const Eigen::VectorXd dh = predicted(d, true);
+    REQUIRE(dh.cwiseAbs().maxCoeff() > 0.0);
+    CHECK((fd - dh).cwiseAbs().maxCoeff() <= 1e-6 * dh.cwiseAbs().maxCoeff());
+  }
+  Eigen::VectorXd alongNormal = Eigen::VectorXd::Zero(10);
+  alongNormal.head<3>() = n;
+  ContactState a, b;
+  const double dstep = 1e-6;
+  const Eigen::VectorXd fd =
+      (forces(sp + dstep * alongNormal, sv, a) - forces(sp - dstep * alongNormal, sv, b)) /
+      (2.0 * dstep);
+  REQUIRE(a.active_points == s0.active_points);
+  REQUIRE(b.active_points == s0.active_points);
+  const Eigen::VectorXd dh = predicted(alongNormal, false);
+  const double tol =
+      100.0 * std::numeric_limits<double>::epsilon() * h0.cwiseAbs().maxCoeff() / dstep;
+  CHECK((fd - dh).cwiseAbs().maxCoeff() <= tol);
+}
+
 TEST_CASE("obstacle contact: deepest penetration and the box gap bound the points", "[contact]") {
   Draw draw(404);
   const Cap cap = makeCap(2, draw);

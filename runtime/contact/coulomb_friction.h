@@ -1,0 +1,43 @@
+// Coulomb friction at a collocation point in contact (issue 28; schemas/contact_friction.md),
+// regularised in the slip velocity: with the point's normal force f_n = c_p |g_n| w_i (N),
+// its velocity relative to the target v (m/s, world) and the target's unit normal n,
+//   v_t = v - (v . n) n,   s = sqrt(|v_t|^2 + eps^2),   f_t = -mu f_n v_t / s,
+// so |f_t| < mu f_n always, -> mu f_n in gross slip (|v_t| >> eps: Coulomb's law), and a
+// point that sticks creeps at |v_t| = eps |f_t| / (mu f_n) / sqrt(1 - (|f_t| / (mu f_n))^2).
+// The law is smooth (no switching, nothing for the integrator to chatter on) and has no
+// internal state: the stick is the creep limit eps -> 0, whose error over a contact of
+// duration T is a creep displacement of at most about eps T (schemas/contact_friction.md).
+// The power it takes out, P = -f_t . v_t = mu f_n |v_t|^2 / s >= 0, is the friction work's
+// rate (/energy/dissipated).
+//
+// Linearisation for the Newton matrix: with e1 = v_t / |v_t| (any unit tangent where
+// v_t = 0) and e2 = n x e1 (3D), d f_t / d v = -mu f_n (eps^2 / s^3 e1 e1^T + 1 / s e2 e2^T)
+// (the change of n neglected), and d f_t / d f_n = -mu v_t / s.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace ffriga {
+
+struct FrictionLaw {
+  double coefficient = 0.0;    // mu >= 0 (0: frictionless)
+  double slip_velocity = 0.0;  // eps, m/s (> 0 when mu > 0)
+  bool active() const { return coefficient > 0.0; }
+};
+
+struct PointFriction {
+  Eigen::VectorXd force;  // f_t (d components, N): on the contact body's point
+  double power = 0.0;     // W >= 0
+  bool sticking = false;  // |v_t| < eps
+  // Damping coefficients (N s/m) along the unit tangents e1 and e2 (2D: e1 only, c2 = 0),
+  // and d f_t / d f_n (d components).
+  Eigen::VectorXd e1, e2, load;
+  double c1 = 0.0, c2 = 0.0;
+};
+
+// The friction at a point with normal force f_n >= 0 (N), relative velocity v and unit
+// normal n (both d = 2 or 3 components).
+PointFriction coulombFriction(const FrictionLaw& law, double normal_force, const Eigen::VectorXd& v,
+                              const Eigen::VectorXd& n);
+
+}  // namespace ffriga
