@@ -99,6 +99,20 @@ Eigen::VectorXd positions(const Eigen::Vector3d& r, const Eigen::Vector4d& quate
   return sp;
 }
 
+// The cap (seed 303, nq = 3) over a tilted plane, at a pose where about 30 of its points
+// press into it: the stiffness and friction tests' setting.
+struct CapOnTiltedPlane {
+  Draw draw{303};
+  Cap cap = makeCap(3, draw);
+  FloatingBody3d body{"cap", cap.sid};
+  Eigen::Vector3d p{-0.03, 0.02, 0.21}, normal{-0.08, 0.12, 2.0};
+  Eigen::Vector3d n = normal.normalized();
+  Eigen::VectorXd sp =
+      positions(Eigen::Vector3d(0.005, 0.01, -0.004), Eigen::Vector4d(1, -0.02, 0.01, 0.03),
+                Eigen::Vector3d(-0.012, 0.02, 0.008));
+  RigidObstacle floor() const { return RigidObstacle::plane("floor", p, normal, 0.0); }
+};
+
 // A collocation point of the cap at positions s_p, evaluated here from the patch and not
 // by the runtime's collocated surface: x(s) is linear in the control points at fixed
 // weights, so the deformed point is the patch with control points P + Phi q, and the
@@ -531,17 +545,14 @@ TEST_CASE("obstacle contact: stiffness terms are the derivative of the forces", 
   // the step: eps |h|max / step ~ 2e-16 * 20 N / 1e-6 m ~ 4e-9 N/m, as seen. The tolerance
   // is 100 times that, still 1e-5 of the smallest effect checked (the lever arm's change,
   // ~0.2 N/m per unit dq) and 1e-8 of the translational stiffness (~3e3 N/m).
-  Draw draw(303);
-  const Cap cap = makeCap(3, draw);
-  FloatingBody3d body("cap", cap.sid);
-  const Eigen::Vector3d p(-0.03, 0.02, 0.21), normal(-0.08, 0.12, 2.0);
-  const Eigen::Vector3d n = normal.normalized();
+  const CapOnTiltedPlane setting;
+  const Cap& cap = setting.cap;
+  const FloatingBody3d& body = setting.body;
+  const Eigen::Vector3d &p = setting.p, &normal = setting.normal, &n = setting.n;
+  const Eigen::VectorXd& sp = setting.sp;
   ContactOptions opt;
   opt.penalty = kPenalty;
-  ObstacleContact pair("cap-floor", 0, body, 0, RigidObstacle::plane("floor", p, normal, 0.0), opt);
-  const Eigen::VectorXd sp =
-      positions(Eigen::Vector3d(0.005, 0.01, -0.004), Eigen::Vector4d(1, -0.02, 0.01, 0.03),
-                Eigen::Vector3d(-0.012, 0.02, 0.008));
+  ObstacleContact pair("cap-floor", 0, body, 0, setting.floor(), opt);
   const Eigen::Matrix3d A = rotationMatrix(sp.data() + 3);
   const int nv = body.numVelocities();
   auto forces = [&](const Eigen::VectorXd& at, ContactState& s) {
@@ -629,19 +640,15 @@ TEST_CASE("obstacle contact with friction: Coulomb's bound and its terms", "[con
   // tolerance of 1e-6 relative to the largest term. The kFrictionLoad term with the normal
   // term gives d h / d s_p along the normal translation exactly (the points' velocities do
   // not depend on the translation): central differences as in the stiffness test.
-  Draw draw(303);
-  const Cap cap = makeCap(3, draw);
-  FloatingBody3d body("cap", cap.sid);
-  const Eigen::Vector3d p(-0.03, 0.02, 0.21), normal(-0.08, 0.12, 2.0);
-  const Eigen::Vector3d n = normal.normalized();
+  const CapOnTiltedPlane setting;
+  const FloatingBody3d& body = setting.body;
+  const Eigen::Vector3d& n = setting.n;
+  const Eigen::VectorXd& sp = setting.sp;
   ContactOptions opt;
   opt.penalty = kPenalty;
   opt.friction.coefficient = 0.3;
   opt.friction.slip_velocity = 3e-3;  // m/s: some points stick, some slip (below)
-  ObstacleContact pair("cap-floor", 0, body, 0, RigidObstacle::plane("floor", p, normal, 0.0), opt);
-  const Eigen::VectorXd sp =
-      positions(Eigen::Vector3d(0.005, 0.01, -0.004), Eigen::Vector4d(1, -0.02, 0.01, 0.03),
-                Eigen::Vector3d(-0.012, 0.02, 0.008));
+  ObstacleContact pair("cap-floor", 0, body, 0, setting.floor(), opt);
   const int nv = body.numVelocities();
   Eigen::VectorXd sv(nv);
   sv << 2e-3, -1e-3, 5e-4, 3e-3, -2e-3, 1e-3, 0.01, -0.02, 0.015;
@@ -664,8 +671,7 @@ TEST_CASE("obstacle contact with friction: Coulomb's bound and its terms", "[con
   // Frictionless, the same state: the normal force is the same; no tangential part.
   ContactOptions frictionless = opt;
   frictionless.friction = FrictionLaw{};
-  ObstacleContact plain("cap-floor", 0, body, 0, RigidObstacle::plane("floor", p, normal, 0.0),
-                        frictionless);
+  ObstacleContact plain("cap-floor", 0, body, 0, setting.floor(), frictionless);
   Eigen::VectorXd hPlain = Eigen::VectorXd::Zero(nv);
   ContactState sPlain;
   plain.evaluate(body, body.pose(sp.data()), hPlain.data(), &sPlain);
