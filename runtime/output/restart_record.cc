@@ -3,9 +3,10 @@
 #include <sstream>
 
 #include "common/base/error.h"
-#include "common/sid/hdf5_io.h"
 #include "common/input/yaml_overrides.h"
+#include "common/sid/hdf5_io.h"
 #include "runtime/output/run_figures.h"
+#include "runtime/output/writer_lock.h"
 
 namespace ffriga {
 
@@ -60,6 +61,8 @@ void RestartRecordWriter::flush() {
 }
 
 RestartRecord readRestartRecord(const std::string& path) {
+  // Another ffrsim still writing the file is the reason to give, whatever its record holds.
+  WriterLock::refuseIfHeld(path);
   h5::silenceErrors();
   const h5::Context c{path, true};
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);

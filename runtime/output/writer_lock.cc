@@ -25,6 +25,12 @@ struct flock lockRequest(short type) {
   return l;
 }
 
+[[noreturn]] void throwBeingWritten(const std::string& path, long other) {
+  const std::string who = other > 0 ? std::string(Str() << " (process " << other << ")") : "";
+  throw InputError(Str() << path << ": the result file is being written by another ffrsim" << who
+                         << "; wait for it to end or stop it first");
+}
+
 }  // namespace
 
 WriterLock::WriterLock(const std::string& path) : path_(path) {
@@ -33,7 +39,12 @@ WriterLock::WriterLock(const std::string& path) : path_(path) {
     throw InputError(Str() << path << ": cannot open the result file for writing ("
                            << std::strerror(errno) << ")");
   }
-  acquire();
+  try {
+    acquire();
+  } catch (...) {
+    ::close(fd_);  // the destructor does not run for an object never constructed
+    throw;
+  }
 }
 
 WriterLock::~WriterLock() {
@@ -44,13 +55,13 @@ void WriterLock::acquire() {
   struct flock l = lockRequest(F_WRLCK);
   if (::fcntl(fd_, F_SETLK, &l) == 0) return;
   const int err = errno;
-  if (err == EACCES || err == EAGAIN) {
-    const long other = holder(path_);
-    const std::string who = other > 0 ? std::string(Str() << " (process " << other << ")") : "";
-    throw InputError(Str() << path_ << ": the result file is being written by another ffrsim"
-                           << who << "; wait for it to end or stop it first");
-  }
+  if (err == EACCES || err == EAGAIN) throwBeingWritten(path_, holder(path_));
   // File systems without record locks (ENOLCK, EINVAL): the file is written unguarded.
+}
+
+void WriterLock::refuseIfHeld(const std::string& path) {
+  const long other = holder(path);
+  if (other > 0 && other != static_cast<long>(::getpid())) throwBeingWritten(path, other);
 }
 
 long WriterLock::holder(const std::string& path) {

@@ -31,6 +31,9 @@ class WriterLock {
   // The process that holds a writer lock on `path`, or 0 if none does (or the file is
   // missing).
   static long holder(const std::string& path);
+  // InputError "being written by another ffrsim" if another process holds the lock on
+  // `path` (checked before reading a file that may still be written, e.g. for --restart).
+  static void refuseIfHeld(const std::string& path);
 
  private:
   std::string path_;
