@@ -78,4 +78,10 @@ HertzEllipse hertzEllipse(double A, double B, double effective_modulus, double f
   return h;
 }
 
+HertzImpact ellipticalHertzImpact(const RelativeCurvatures& r, const HertzSphere& a,
+                                  const HertzSphere& b, double v, double preload) {
+  const double m = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
+  return hertzImpact(hertzEllipse(r.A, r.B, effectiveModulus(a, b), 1.0).stiffness, m, v, preload);
+}
+
 }  // namespace ffriga

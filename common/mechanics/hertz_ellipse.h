@@ -16,6 +16,8 @@
 // R* = 1 / (2 A). Units: 1/m, Pa, N, m.
 #pragma once
 
+#include "common/mechanics/hertz.h"
+
 namespace ffriga {
 
 struct HertzEllipse {
@@ -52,5 +54,12 @@ double ellipseEccentricity(double b_over_a);
 // a circle (b >= a, or b not given: b <= 0). `penalty_factor: auto` sets
 // c_p = p0 / (eps delta) = 2 E* / (pi eps L) from it.
 double ellipseApproachLength(double a, double b);
+
+// Hertz's impact of two bodies whose surfaces make the relative curvatures r: the law's
+// stiffness K_e from the ellipse at 1 N (F = K_e delta^(3/2) at every load), E* and the
+// effective mass of the two bodies (their radii unused), approach speed v (m/s), a steady
+// preload (N) as hertzImpact's.
+HertzImpact ellipticalHertzImpact(const RelativeCurvatures& r, const HertzSphere& a,
+                                  const HertzSphere& b, double v, double preload = 0.0);
 
 }  // namespace ffriga

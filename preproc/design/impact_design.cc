@@ -44,12 +44,9 @@ void resolveEllipticalImpact(double k1, double k2, const HertzSphere& self,
   const HertzSphere partner = partnerOf(request, self);
   const double kp1 = request.partner == DesignRequest::Partner::kSame ? k1 : 1.0 / partner.radius;
   const double kp2 = request.partner == DesignRequest::Partner::kSame ? k2 : 1.0 / partner.radius;
-  const double A = 0.5 * (k1 + kp1), B = 0.5 * (k2 + kp2);
-  const double Es = effectiveModulus(self, partner);
-  const double m = 1.0 / (1.0 / self.mass + 1.0 / partner.mass);
-  const HertzImpact h =
-      hertzImpact(hertzEllipse(A, B, Es, 1.0).stiffness, m, request.approach_speed);
-  const HertzEllipse peak = hertzEllipse(A, B, Es, h.max_force);
+  const RelativeCurvatures r = relativeCurvatures(k1, k2, kp1, kp2, 1.0);
+  const HertzImpact h = ellipticalHertzImpact(r, self, partner, request.approach_speed);
+  const HertzEllipse peak = hertzEllipse(r.A, r.B, effectiveModulus(self, partner), h.max_force);
   d->hertz = h;
   d->approach_speed = request.approach_speed;
   d->contact_radius = peak.semi_major;

@@ -59,16 +59,6 @@ PrincipalCurvatures curvaturesOf(const Scene& scene, int b, const HertzSphere& s
           scene.initial_rotation[b] * Eigen::Vector3d(sid.design.principal_direction)};
 }
 
-// Hertz's elliptical impact of two surfaces (common/mechanics/hertz_ellipse.h): the law's
-// stiffness from the ellipse at 1 N (F = K_e delta^(3/2) holds at every load), E* and m*
-// of the two bodies.
-HertzImpact ellipticalImpact(const RelativeCurvatures& r, const HertzSphere& a,
-                             const HertzSphere& b, double v, double preload = 0.0) {
-  const double m = 1.0 / (1.0 / a.mass + 1.0 / b.mass);
-  const double K = hertzEllipse(r.A, r.B, effectiveModulus(a, b), 1.0).stiffness;
-  return hertzImpact(K, m, v, preload);
-}
-
 // A rigid obstacle as Hertz sees it: infinitely stiff and heavy; a plane also infinitely
 // large (IEEE infinities make E*, R* and m* those of the body alone).
 HertzSphere rigidPartner(const RigidObstacle& o) {
@@ -106,7 +96,8 @@ std::optional<HertzReference> obstacleReference(const Scene& scene, const Obstac
     const double k = 1.0 / sa->radius;
     h.curvatures = relativeCurvatures(k, k, 0.0, 1.0 / c.obstacle().radius(), 1.0);
     h.elliptical = true;
-    h.impact = ellipticalImpact(h.curvatures, h.sphere_a, h.sphere_b, h.approach_speed, preload);
+    h.impact =
+        ellipticalHertzImpact(h.curvatures, h.sphere_a, h.sphere_b, h.approach_speed, preload);
   } else {
     h.impact = hertzImpact(h.sphere_a, h.sphere_b, h.approach_speed, preload);
     h.curvatures.A = h.curvatures.B = 0.5 / effectiveRadius(h.sphere_a, h.sphere_b);
@@ -167,7 +158,7 @@ std::optional<HertzReference> hertzReference(const Scene& scene, int pair) {
   const double cos_alpha = ca.spherical() || cb.spherical() ? 1.0 : ca.d1.dot(cb.d1);
   h.curvatures = relativeCurvatures(ca.k1, ca.k2, cb.k1, cb.k2, cos_alpha);
   h.elliptical = true;
-  h.impact = ellipticalImpact(h.curvatures, *sa, *sb, h.approach_speed);
+  h.impact = ellipticalHertzImpact(h.curvatures, *sa, *sb, h.approach_speed);
   return h;
 }
 

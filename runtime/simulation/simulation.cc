@@ -187,22 +187,19 @@ double dissipatedBetween(const BdfIntegrator& integ, const MultibodySystem& syst
   return 0.5 * (b - a) * sum;
 }
 
-// The friction's power (W) at y: the contact pairs evaluated there.
-double frictionPower(MultibodySystem& system, const double* y) {
-  std::vector<Eigen::VectorXd> h;
-  std::vector<ContactState> states;
-  system.contactForces(y, h, &states);
+// The friction's power (W) of the pairs' states.
+double frictionPower(const std::vector<ContactState>& states) {
   double power = 0.0;
   for (const ContactState& s : states) power += s.friction_power;
   return power;
 }
 
-// The same at the end of the step just taken: the last right-hand side's pairs (CVODE
-// evaluates it at the accepted state to within the Newton tolerance).
-double frictionPowerAtStepEnd(const MultibodySystem& system) {
-  double power = 0.0;
-  for (const ContactState& s : system.lastRhsContacts()) power += s.friction_power;
-  return power;
+// The same at y: the contact pairs evaluated there.
+double frictionPower(MultibodySystem& system, const double* y) {
+  std::vector<Eigen::VectorXd> h;
+  std::vector<ContactState> states;
+  system.contactForces(y, h, &states);
+  return frictionPower(states);
 }
 
 // The output rows at `times` inside the step that ended at t, by interpolation
@@ -342,7 +339,7 @@ void TimeLoop::step(BdfIntegrator& integ, ApproachControl& approach, Eigen::Vect
   addContactOutputs(settings_.contact_output_interval, contact || phase_ == 1, tPrev_, t_, times);
   // Friction's work: the trapezoidal rule on its power at the step's ends (the last
   // right-hand side's, at the accepted state), linear inside the step.
-  const double frictionEnd = friction_ ? frictionPowerAtStepEnd(system_) : 0.0;
+  const double frictionEnd = friction_ ? frictionPower(system_.lastRhsContacts()) : 0.0;
   auto dissipatedAt = [&](double to) {
     if (!dissipates_) return 0.0;
     double w = dissipated_ + dissipatedBetween(integ, system_, tPrev_, to, work_);
