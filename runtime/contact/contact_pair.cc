@@ -43,7 +43,8 @@ void ContactPair::addForces(const ForceContext& at, std::vector<Eigen::VectorXd>
                             const ForceStates& states) {
   const int a = bodyA(), b = bodyB();
   evaluate(at.body(a), at.pose(a), at.body(b), at.pose(b), h[a].data(), h[b].data(),
-           states.contacts ? &(*states.contacts)[slot()] : nullptr);
+           states.contacts ? &(*states.contacts)[slot()] : nullptr, at.velocities(a),
+           at.velocities(b));
 }
 
 double ContactPair::boxGap(const ForceContext& at) const {
@@ -137,7 +138,10 @@ double ContactPair::TargetMotion::since(const Side::Clearance& cl) const {
 }
 
 void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
-                           const BodyPose& pb, double* hA, double* hB, ContactState* state) {
+                           const BodyPose& pb, double* hA, double* hB, ContactState* state,
+                           const double* svA, const double* svB) {
+  FFRIGA_CHECK(!options_.friction.active() || (svA != nullptr && svB != nullptr),
+               "friction needs the bodies' velocities");
   terms_.clear();
   active_.clear();
   terms_formed_ = false;
@@ -160,9 +164,9 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
                                   targetMotion(side_[1], wb.u, renew)};
   const double factor = roleFactor();
   ContactState s0, s1;
-  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0, state != nullptr);
+  collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0, state != nullptr, svA, svB);
   if (options_.both_roles)
-    collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, motion[0], &s1, state != nullptr);
+    collocate(1, B, pb, wb, A, pa, wa, hB, hA, factor, motion[0], &s1, state != nullptr, svB, svA);
   if (state) {
     // s1 holds forces on B: the force on A is minus that.
     state->force = s0.force - s1.force;
@@ -174,6 +178,15 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
     state->active_points = s0.active_points + s1.active_points;
     state->energy = s0.energy + s1.energy;
     state->projection_failures = s0.projection_failures + s1.projection_failures;
+    if (options_.friction.active()) {
+      state->tangential_force = s0.tangential_force - s1.tangential_force;
+      if (dim_ == 2)
+        state->tangential_force = Eigen::Vector3d(0.0, state->tangential_force(1), 0.0);
+      state->normal_force = (state->force - state->tangential_force).norm();
+      state->friction_power = s0.friction_power + s1.friction_power;
+      state->sticking_points = s0.sticking_points + s1.sticking_points;
+      state->slipping_points = s0.slipping_points + s1.slipping_points;
+    }
   }
 }
 
@@ -186,6 +199,9 @@ struct ContactPair::PointResult {
   Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
   int element = -1;
   Eigen::VectorXd s;
+  // Friction (addFriction): the law's values, the points' gradients (nv x d).
+  PointFriction friction;
+  Eigen::MatrixXd GC, GT;
 };
 
 // Sums of collocate()'s active points, formed serially in point order.
@@ -260,6 +276,10 @@ void ContactPair::addDiagnostics(const PointResult& r, double weight, double fac
   state.max_penetration = std::max(state.max_penetration, -r.gap);
   ++state.active_points;
   state.energy += 0.5 * options_.penalty * r.gap * r.gap * weight * factor;
+  if (!options_.friction.active()) return;
+  state.tangential_force.head(dim_) += r.friction.force;
+  state.friction_power += r.friction.power;
+  ++(r.friction.sticking ? state.sticking_points : state.slipping_points);
 }
 
 void ContactPair::addPointForces(int c, int i, const PointResult& r, double factor,
@@ -283,7 +303,46 @@ void ContactPair::addPointForces(int c, int i, const PointResult& r, double fact
     sums.touched[st.local[f]] = 1;
   }
   active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
-                     sums.R.row(0).transpose(), r.xb, r.xt, r.n});
+                     sums.R.row(0).transpose(), r.xb, r.xt, r.n, r.GC, r.GT, r.friction});
+}
+
+Eigen::MatrixXd ContactPair::footModes(const Side& st, const BodyModel& T, int element,
+                                       const Eigen::VectorXd& basis) const {
+  const int d = dim_;
+  Eigen::MatrixXd PhiTt = Eigen::MatrixXd::Zero(T.nq(), d);
+  if (T.nq() == 0) return PhiTt;
+  for (int k = 0; k < st.surface.numFunctions(element); ++k) {
+    const int f = st.surface.functions(element)[k];
+    PhiTt += basis(k) * st.PhiSt.middleCols(st.local[f] * d, d);
+  }
+  return PhiTt;
+}
+
+void ContactPair::addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
+                              const BodyModel& T, const BodyPose& pt, const double* svC,
+                              const double* svT) const {
+  const Side& sc = side_[c];
+  const Side& st = side_[1 - c];
+  const int d = dim_;
+  Eigen::MatrixXd R;
+  st.surface.basis(r.element, r.s.data(), 0, R);
+  const Eigen::MatrixXd PhiC = sc.PhiCt.middleCols(i * d, d).transpose();
+  const Eigen::MatrixXd PhiT = footModes(st, T, r.element, R.row(0).transpose()).transpose();
+  r.GC.resize(C.numVelocities(), d);
+  r.GT.resize(T.numVelocities(), d);
+  Eigen::VectorXd bv, bp;
+  for (int k = 0; k < d; ++k) {
+    const Eigen::VectorXd e = Eigen::VectorXd::Unit(d, k);
+    C.pointGradients(pc, r.xb, PhiC, e, bv, bp);
+    r.GC.col(k) = bv;
+    T.pointGradients(pt, r.xt, PhiT, e, bv, bp);
+    r.GT.col(k) = bv;
+  }
+  const Eigen::VectorXd v =
+      r.GC.transpose() * Eigen::Map<const Eigen::VectorXd>(svC, C.numVelocities()) -
+      r.GT.transpose() * Eigen::Map<const Eigen::VectorXd>(svT, T.numVelocities());
+  r.friction = coulombFriction(options_.friction, r.f.norm(), v, r.n);
+  r.f += r.friction.force;
 }
 
 void ContactPair::addElasticForces(const Side& st, const BodyModel& C, const BodyModel& T,
@@ -303,7 +362,8 @@ void ContactPair::addElasticForces(const Side& st, const BodyModel& C, const Bod
 void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc,
                             const BodyModel& T, const BodyPose& pt, const World& wt, double* hC,
                             double* hT, double factor, const TargetMotion& motion,
-                            ContactState* state, bool record) {
+                            ContactState* state, bool record, const double* svC,
+                            const double* svT) {
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_, nc = static_cast<int>(sc.xc0.rows());
@@ -326,8 +386,10 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   // Phase 3: serial sums in point order (independent of the thread count).
   ForceSums sums{Eigen::VectorXd::Zero(C.nq()), Eigen::MatrixXd::Zero(st.cps.size(), d),
                  std::vector<char>(st.cps.size(), 0), Eigen::MatrixXd()};
+  const bool friction = options_.friction.active();
   for (int i = 0; i < nc; ++i) {
-    const PointResult& r = res[i];
+    PointResult& r = res[i];
+    if (r.active && friction) addFriction(c, i, r, C, pc, T, pt, svC, svT);
     if (state) addDiagnostics(r, sc.weight(i), factor, *state);
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
     if (record) {
@@ -335,6 +397,8 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
         pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
       else
         pressure_.set(c, i, xs[i]);
+      if (r.active && friction && sc.weight(i) > 0.0)
+        pressure_.setTraction(c, i, r.friction.force / (factor * sc.weight(i)));
     }
   }
   addElasticForces(st, C, T, hC, hT, sums);
@@ -352,13 +416,7 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
     const BodyModel& C = *bodies_[a.c];
     const BodyModel& T = *bodies_[1 - a.c];
     // Phi at the foot point x_T, transposed: the surface basis at s over T's control points.
-    PhiTt.setZero(T.nq(), d);
-    if (T.nq() > 0) {
-      for (int k = 0; k < st.surface.numFunctions(a.element); ++k) {
-        const int f = st.surface.functions(a.element)[k];
-        PhiTt += a.basis(k) * st.PhiSt.middleCols(st.local[f] * d, d);
-      }
-    }
+    PhiTt = footModes(st, T, a.element, a.basis);
     StiffnessTerm term;
     term.body_c = a.c == 0 ? bodyA() : bodyB();
     term.body_t = a.c == 0 ? bodyB() : bodyA();
@@ -366,10 +424,35 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
     C.pointGradients(poses_[a.c], a.xb, sc.PhiCt.middleCols(a.i * d, d).transpose(), a.n, term.bvC,
                      term.bpC);
     T.pointGradients(poses_[1 - a.c], a.xt, PhiTt.transpose(), a.n, term.bvT, term.bpT);
+    if (options_.friction.active()) addFrictionTerms(a, term);
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;
   return terms_;
+}
+
+// Friction's terms (runtime/contact/coulomb_friction.h) with the relative velocity
+// G_C^T s_vC - G_T^T s_vT: the damping along e1 and e2, d h / d s_v = -c [G_C e; -G_T e]
+// [G_C e; -G_T e]^T, and the normal force's share, d h / d s_p = -k [G_C l; -G_T l]
+// [bpC; -bpT]^T with l = d f_t / d f_n (k = c_p w_i times the role factor).
+void ContactPair::addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const {
+  const PointFriction& fr = a.friction;
+  const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e,
+                       bool velocities) {
+    StiffnessTerm t;
+    t.body_c = normal.body_c;
+    t.body_t = normal.body_t;
+    t.kind = kind;
+    t.k = k;
+    t.bvC = a.GC * e;
+    t.bvT = a.GT * e;
+    t.bpC = velocities ? t.bvC : normal.bpC;
+    t.bpT = velocities ? t.bvT : normal.bpT;
+    terms_.push_back(std::move(t));
+  };
+  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, fr.e1, true);
+  if (fr.e2.size() > 0) add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, fr.e2, true);
+  add(StiffnessTerm::Kind::kFrictionLoad, a.k, fr.load, false);
 }
 
 Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& pa,

@@ -76,9 +76,10 @@ class ContactPair : public SurfaceContact {
   // after it (O(nq) per point and body: right-hand sides that need no Jacobian skip it).
   const std::vector<StiffnessTerm>& stiffnessTerms() const override;
   // Adds the generalised contact forces to hA and hB (layout of the bodies' velocities) and
-  // fills `state` if given.
+  // fills `state` if given. svA, svB: the bodies' velocities (needed with friction only).
   void evaluate(const BodyModel& A, const BodyPose& pa, const BodyModel& B, const BodyPose& pb,
-                double* hA, double* hB, ContactState* state);
+                double* hA, double* hB, ContactState* state, const double* svA = nullptr,
+                const double* svB = nullptr);
 
  private:
   // A collocated surface, as the contact side and as the target of the other.
@@ -144,9 +145,11 @@ class ContactPair : public SurfaceContact {
   // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three
   // phases: which points need a search (serial), the searches (parallel), the sums (serial);
   // with `record`, role c of pressure_ too.
+  // svC, svT: the two bodies' velocities (friction).
   void collocate(int c, const BodyModel& C, const BodyPose& pc, const World& wc, const BodyModel& T,
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
-                 const TargetMotion& motion, ContactState* state, bool record);
+                 const TargetMotion& motion, ContactState* state, bool record, const double* svC,
+                 const double* svT);
   struct PointResult;  // one collocation point's outcome (contact_pair.cc)
   struct ForceSums;    // the serial sums over the active points (contact_pair.cc)
   // Phase 1, point i of contact side sc: its body point r.xb (from the control points'
@@ -163,6 +166,18 @@ class ContactPair : public SurfaceContact {
   void searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
                    double orientT, double factor, const TargetMotion& motion,
                    const Eigen::VectorXd& x, const Eigen::VectorXd& y, PointResult& r) const;
+  // Target side st's modes at a foot point, transposed (T.nq() x d): the surface basis
+  // `basis` of `element` over st's control points.
+  Eigen::MatrixXd footModes(const Side& st, const BodyModel& T, int element,
+                            const Eigen::VectorXd& basis) const;
+  // Phase 3, friction at active point i of side c (runtime/contact/coulomb_friction.h): the
+  // relative velocity of the collocation point and the foot point, G_C^T svC - G_T^T svT
+  // (the gradients of the two points' world positions per world axis into r.GC, r.GT), and
+  // the tangential force added to r.f (on C; -r.f on T). The force's normal part is the
+  // penalty's f_n = |r.f| (role factor included).
+  void addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
+                   const BodyModel& T, const BodyPose& pt, const double* svC,
+                   const double* svT) const;
   // Phase 3, one point's diagnostics: a failed search, its depth beyond the edge and, if
   // active, its force, penetration and penalty energy 1/2 c_p g_n^2 w_i (times `factor`).
   void addDiagnostics(const PointResult& r, double weight, double factor,
@@ -184,7 +199,13 @@ class ContactPair : public SurfaceContact {
     int c = 0, i = 0, element = -1;
     double k = 0.0;
     Eigen::VectorXd basis, xb, xt, n;
+    Eigen::MatrixXd GC, GT;  // friction: the points' position gradients (nv x d per body)
+    PointFriction friction;  // friction: its law's values at the point
   };
+  // Friction's terms of active point a beside its normal term (as ObstacleContact's, with
+  // the target's gradients): damping along e1 and e2 on both bodies' velocities, and the
+  // normal force's share.
+  void addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
   BodyPose poses_[2];

@@ -7,6 +7,10 @@
 // at the foot point and w_i the collocation weight (m^2; axisymmetric: the meridian weight
 // times 2 pi r_i), factor 1/2 where both roles are averaged, else 1. So the resultant on
 // body A is factor (sum_{role 0} p_i w_i n_i - sum_{role 1} p_i w_i n_i).
+// With friction (runtime/contact/coulomb_friction.h) a point also carries the tangential
+// traction t_i = f_t,i / (factor w_i) (Pa, world: the friction force on its body per unit
+// area), so that factor sum p_i w_i n_i + factor sum t_i w_i (role 1 with minus signs) is the
+// resultant; 0 without friction or contact.
 // Rows: the points of role 0 in collocation order, then those of role 1. Positions and
 // normals are world coordinates (axisymmetric: (x, y, 0), x the radius and y the axis, as
 // the result file's points).
@@ -25,6 +29,7 @@ struct ContactPressure {
   Eigen::MatrixXd position;  // n x 3, m
   Eigen::VectorXd pressure;  // n, Pa (0 where g_n >= 0 or the point is not near the target)
   Eigen::MatrixXd normal;    // n x 3, unit, 0 where p_i = 0
+  Eigen::MatrixXd traction;  // n x 3, Pa, 0 without friction
 
   // Role r's rows begin here (offset(numRoles()) = n).
   int numRoles() const { return role.empty() ? 0 : role.back() + 1; }
@@ -41,11 +46,13 @@ struct ContactPressure {
     position.setZero(role.size(), 3);
     pressure.setZero(role.size());
     normal.setZero(role.size(), 3);
+    traction.setZero(role.size(), 3);
   }
   // No point carries pressure (the surfaces are apart; positions are left as they were).
   void clear() {
     pressure.setZero();
     normal.setZero();
+    traction.setZero();
   }
   // Point i of role r at world position x (d entries), without pressure.
   void set(int r, int i, const Eigen::Ref<const Eigen::VectorXd>& x) {
@@ -53,6 +60,7 @@ struct ContactPressure {
     position.row(row).head(x.size()) = x.transpose();
     pressure(row) = 0.0;
     normal.row(row).setZero();
+    traction.row(row).setZero();
   }
   // Point i of role r at x with pressure p > 0 (Pa) along the unit normal n (d entries).
   void set(int r, int i, const Eigen::Ref<const Eigen::VectorXd>& x, double p,
@@ -61,6 +69,11 @@ struct ContactPressure {
     position.row(row).head(x.size()) = x.transpose();
     pressure(row) = p;
     normal.row(row).head(n.size()) = n.transpose();
+    traction.row(row).setZero();
+  }
+  // The tangential traction t (Pa, d entries) of point i of role r, set after its pressure.
+  void setTraction(int r, int i, const Eigen::Ref<const Eigen::VectorXd>& t) {
+    traction.row(first_[r] + i).head(t.size()) = t.transpose();
   }
 
  private:

@@ -105,7 +105,10 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
     if (state) pressure_.set(0, i, x, -options_.penalty * p.gap, p.normal);
     Eigen::VectorXd f = (-k * p.gap) * n;
     active_.push_back({i, k, xb, n, {}, {}});
-    if (options_.friction.active()) addFriction(A, pa, sv, -k * p.gap, f, s, active_.back());
+    if (options_.friction.active()) {
+      addFriction(A, pa, sv, -k * p.gap, f, s, active_.back());
+      if (state) pressure_.setTraction(0, i, active_.back().friction.force / side_.weight(i));
+    }
     A.addRigidPointForce(pa, xb, f, hA);
     if (A.nq() > 0) fbSum += side_.PhiCt.middleCols(i * dim_, dim_) * (pa.A.transpose() * f);
     s.force.head(dim_) += f;

@@ -101,6 +101,7 @@ struct PressureSample {
   Eigen::MatrixXd position;  // n x 3, m, inertial (axisymmetric: x the radius, y the axis)
   Eigen::VectorXd pressure;  // n, Pa: c_p max(0, -g_n)
   Eigen::MatrixXd normal;    // n x 3, the target's unit outward normal (0 where no pressure)
+  Eigen::MatrixXd traction;  // n x 3, Pa: tangential (friction) traction, 0 without friction
 };
 
 struct JointSample {

@@ -25,12 +25,14 @@ PeakContactPressure::PeakContactPressure(ResultFile& file, const OutputLayout& l
     p.role = pair.collocation_role;
     p.weight = pair.collocation_weight;
     p.factor = pair.role_factor;
+    p.friction = pair.friction_coefficient > 0.0;
     const Eigen::Index n = p.weight.size();
     FFRIGA_CHECK(static_cast<Eigen::Index>(p.role.size()) == n,
                  "pair " << pair.name << ": " << p.role.size() << " roles, " << n << " weights");
     p.field.position.setZero(n, 3);
     p.field.pressure.setZero(n);
     p.field.normal.setZero(n, 3);
+    p.field.traction.setZero(n, 3);
     if (file_.appending() && h5::exists(file_.id(), p.group))
       restore(p);
     else
@@ -70,6 +72,12 @@ void PeakContactPressure::create(const Pair& p) {
   h5::writeMatrix(c, g.id(), "normal", p.field.normal, "");
   describe(c, g.id(), "normal", "1",
            "target's unit outward normal at the foot point (0: no pressure)");
+  if (p.friction) {
+    h5::writeMatrix(c, g.id(), "traction", p.field.traction, "");
+    describe(c, g.id(), "traction", "Pa",
+             "tangential (friction) traction on the point's body, world; force on body_a adds "
+             "role_factor (sum over role 0 - sum over role 1) of traction * weight");
+  }
   h5::writeVector(c, g.id(), "weight", p.weight, "");
   describe(c, g.id(), "weight", "m^2", "collocation weight w_i (axisymmetric: times 2 pi r_i)");
   h5::writeInts(c, g.id(), "role", p.role);
@@ -88,8 +96,10 @@ void PeakContactPressure::restore(Pair& p) {
   f.pressure = h5::readVector(c, g.id(), "pressure");
   f.normal = h5::readMatrix(c, g.id(), "normal");
   const Eigen::Index n = p.weight.size();
+  f.traction = p.friction ? h5::readMatrix(c, g.id(), "traction") : Eigen::MatrixXd::Zero(n, 3);
   if (f.position.rows() != n || f.position.cols() != 3 || f.pressure.size() != n ||
-      f.normal.rows() != n || f.normal.cols() != 3)
+      f.normal.rows() != n || f.normal.cols() != 3 || f.traction.rows() != n ||
+      f.traction.cols() != 3)
     c.fail("/" + p.group + " has another number of collocation points than the scene's pair");
   p.field = std::move(f);
 }
@@ -105,6 +115,7 @@ void PeakContactPressure::flush() {
     file_.rewrite(g.id(), "position", p.field.position);
     file_.rewrite(g.id(), "pressure", p.field.pressure);
     file_.rewrite(g.id(), "normal", p.field.normal);
+    if (p.friction) file_.rewrite(g.id(), "traction", p.field.traction);
   }
 }
 

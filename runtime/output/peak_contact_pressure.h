@@ -4,9 +4,10 @@
 // point of each role, with the point's world position, the target's normal there, its
 // collocation weight w_i (m^2) and role (runtime/contact/contact_pressure.h), so that
 //   sum_i role_factor p_i w_i n_i   (role 1 with a minus sign)
-// is the pair's resultant force on body A at that step. Written to the result file as
-// /contacts/<pair>/peak_pressure (schemas/result_format.md): created with the sink, before
-// the file's SWMR mode (the number of points is fixed at setup), and rewritten in place at
+// is the pair's resultant normal force on body A at that step; a pair with friction also
+// gets the tangential traction t_i (Pa) there, which adds sum_i role_factor t_i w_i. Written to the
+// result file as /contacts/<pair>/peak_pressure (schemas/result_format.md): created with the sink,
+// before the file's SWMR mode (the number of points is fixed at setup), and rewritten in place at
 // the flushes after a larger force was seen; a restart keeps the peak recorded before it;
 // a pair that never touched has no group at close.
 #pragma once
@@ -40,6 +41,7 @@ class PeakContactPressure : public OutputSink {
     std::vector<int> role;
     Eigen::VectorXd weight;
     double factor = 1.0;
+    bool friction = false;            // the traction dataset too
     double time = -1.0, force = 0.0;  // s, N; -1: none yet
     PressureSample field;
     bool pending = false;

@@ -74,8 +74,7 @@ class SceneBuilder {
   void addContacts();
   int contactSurface(std::size_t c, int i, int body) const;
   ContactOptions contactOptions(std::size_t c, int body_a, int body_b) const;
-  void readFriction(const YAML::Node& C, const std::string& k, int body_b,
-                    FrictionLaw& friction) const;
+  void readFriction(const YAML::Node& C, const std::string& k, FrictionLaw& friction) const;
   double automaticPenalty(std::size_t c, int body_a, int body_b) const;
   void warnFacingAway();
   void readIntegrator();
@@ -274,14 +273,14 @@ ContactOptions SceneBuilder::contactOptions(std::size_t c, int body_a, int body_
   o.penetration_tolerance =
       doubleOr(doc(), C["penetration_tolerance"], k + ".penetration_tolerance", -1.0);
   o.edge_reach = doubleOr(doc(), C["edge_reach"], k + ".edge_reach", -1.0);
-  readFriction(C, k, body_b, o.friction);
+  readFriction(C, k, o.friction);
   return o;
 }
 
 // Pair c's Coulomb friction (runtime/contact/coulomb_friction.h): a coefficient >= 0 (0 or
 // absent: frictionless) and the regularisation's slip velocity (m/s, default
-// kDefaultSlipVelocity). Between two bodies not yet: refused.
-void SceneBuilder::readFriction(const YAML::Node& C, const std::string& k, int body_b,
+// kDefaultSlipVelocity).
+void SceneBuilder::readFriction(const YAML::Node& C, const std::string& k,
                                 FrictionLaw& friction) const {
   friction.coefficient =
       doubleOr(doc(), C["friction_coefficient"], k + ".friction_coefficient", 0.0);
@@ -293,10 +292,6 @@ void SceneBuilder::readFriction(const YAML::Node& C, const std::string& k, int b
   if (!(friction.slip_velocity > 0.0) || !std::isfinite(friction.slip_velocity))
     throw inputError(doc(), C["slip_velocity"], k + ".slip_velocity",
                      Str() << "expected a finite number > 0 m/s, found " << friction.slip_velocity);
-  if (friction.active() && body_b >= 0)
-    throw inputError(doc(), C["friction_coefficient"], k + ".friction_coefficient",
-                     "friction between two bodies is not implemented yet: only a body against "
-                     "a rigid obstacle (issue 28)");
 }
 
 // The time span, the output interval and the integrator's tolerances and limits.

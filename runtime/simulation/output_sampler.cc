@@ -140,7 +140,7 @@ std::vector<BodySample> bodySamples(const MultibodySystem& system, const Eigen::
 
 PressureSample pressureSample(const MultibodySystem& system, int c) {
   const ContactPressure& p = system.contact(c).pressureField();
-  return {p.position, p.pressure, p.normal};
+  return {p.position, p.pressure, p.normal, p.traction};
 }
 
 OutputSample outputSample(MultibodySystem& system, double t, const Eigen::VectorXd& y) {

@@ -7,7 +7,8 @@ written separately) holds:
   1. the tangential velocity and the spin after the impact within 0.5 % of impulse theory
      (with the run's own normal restitution e; issue 28's bound), the contact point still
      sliding; the tangential force mu times the normal one at the force peak (1e-6: the
-     regularisation's share at |v_t| ~ 0.15 m/s >> eps is (eps / v_t)^2 / 2);
+     regularisation's share at |v_t| ~ 0.15 m/s >> eps is (eps / v_t)^2 / 2), and so the
+     traction field there (peak_pressure/traction) at every point and in its resultant;
   2. the normal force history within 0.5 % of the frictionless run's (issue 28), whose
      datasets carry no friction series; the frictionless run's tangential velocity kept to
      1e-6 relative;
@@ -19,7 +20,11 @@ written separately) holds:
   4. same bits on 1 and 2 threads; a run stopped in the contact and continued with
      --restart ends within 1e-4 of the straight run (the law has no internal state; CVODE
      restarts at order 1);
-  5. friction between two bodies is refused with exit code 2 (not implemented yet).
+  5. the same impact between two spheres (oblique_friction_pair.yaml: each sphere meets the
+     mid-plane as the ball meets the floor, by symmetry): velocities and spins after it
+     within 0.5 % of impulse theory, linear momentum kept, the tangential force and the
+     traction field of both roles as above, the normal peak within 0.5 % of the frictionless
+     pair's, the friction work as in 3.
 
 usage: check_friction.py FFRSIM SOURCE_DIR SID_DIR OUT_DIR
 """
@@ -82,10 +87,28 @@ with h5py.File(rough, "r") as f, h5py.File(smooth, "r") as g:
     check(abs(ratio / MU - 1) <= 1e-6, f"tangential / normal force at the peak {ratio:.8f} (mu 0.1)")
     check(int(pair["slipping_points"][i]) > 0 and int(pair["sticking_points"][:].max()) == 0,
           f"every active point slips: {int(pair['slipping_points'][i])} at the peak, none sticks")
+    # The traction field beside the pressure at the force peak: |t_i| = mu p_i at every
+    # point (gross slip), tangential, against the sliding (+x), and its resultant mu times
+    # the normal one.
+    pk = pair["peak_pressure"]
+    p, t, nrm, wt = pk["pressure"][:], pk["traction"][:], pk["normal"][:], pk["weight"][:]
+    on = p > 0
+    err = np.max(np.abs(np.linalg.norm(t[on], axis=1) / (MU * p[on]) - 1))
+    tn = np.max(np.abs(np.sum(t[on] * nrm[on], axis=1)) / p[on])
+    check(err <= 1e-6 and tn <= 1e-12 and bool(np.all(t[on, 0] < 0)) and
+          bool(np.all(t[~on] == 0)) and pk["traction"].attrs["unit"] == "Pa",
+          f"peak traction field: |t| = mu p at {int(on.sum())} points to {err:.1e} (bound 1e-6), "
+          f"normal share {tn:.1e}, against the sliding, zero off contact")
+    Ft_peak = np.linalg.norm((t * wt[:, None]).sum(axis=0))
+    Fn_peak = np.linalg.norm(((p * wt)[:, None] * nrm).sum(axis=0))
+    d = Ft_peak / (MU * Fn_peak) - 1
+    check(abs(d) <= 1e-6 and abs(Fn_peak / float(pk.attrs["normal_force_N"]) - 1) <= 1e-12,
+          f"peak traction resultant {Ft_peak:.4f} N = mu x {Fn_peak:.3f} N ({d:+.1e})")
 
     # 2. Against the frictionless run.
     sp = g["contacts/impact"]
-    check("tangential_force" not in sp and "friction_coefficient" not in sp.attrs,
+    check("tangential_force" not in sp and "friction_coefficient" not in sp.attrs
+          and "traction" not in sp["peak_pressure"],
           "the frictionless run has no friction series")
     peak, peak0 = float(f.attrs["max_contact_force_N"]), float(g.attrs["max_contact_force_N"])
     d = peak / peak0 - 1
@@ -127,12 +150,56 @@ with h5py.File(part, "r") as f, h5py.File(rough, "r") as g:
     d = abs(f["energy/dissipated"][-1] / g["energy/dissipated"][-1] - 1)
     check(d <= 1e-4, f"restarted: friction work within {d:.1e} (bound 1e-4)")
 
-# 5. Two bodies.
-pair_scene = os.path.join(source, "configs", "scenes", "impact3d_coarse.yaml")
-r = subprocess.run([ffrsim, "-q", pair_scene, "--sid-path", sids, "-o",
-                    os.path.join(out, "pair.h5"), "--set", "contacts.0.friction_coefficient=0.2"],
-                   capture_output=True, text=True)
-check(r.returncode == 2 and "friction between two bodies" in r.stderr
-      and r.stderr.count("\n") == 1, f"two bodies with friction: exit {r.returncode}: "
-      f"{r.stderr.strip()}")
+# 5. Two bodies: the same impact, mirrored, between two spheres (oblique_friction_pair.yaml).
+pair_scene = os.path.join(source, "configs", "scenes", "oblique_friction_pair.yaml")
+
+
+def run_pair(name, *extra):
+    path = os.path.join(out, name + ".h5")
+    check.run([ffrsim, "-q", pair_scene, "--sid-path", sids, "-o", path, *extra])
+    return path
+
+
+pair_rough = run_pair("pair_rough")
+pair_smooth = run_pair("pair_smooth", "--set", "contacts.0.friction_coefficient=0")
+with h5py.File(pair_rough, "r") as f, h5py.File(pair_smooth, "r") as g:
+    check.status_completed(f)
+    lo, up = inertial_velocity(f, "lower"), inertial_velocity(f, "upper")
+    e = (up[-1, 2] - lo[-1, 2]) / (2 * VN)
+    vt_ref, w_ref, _ = impulse_theory(VN, VT, 0.0, R, mass, inertia, MU, e)
+    d = max(abs(up[-1, 0] / vt_ref - 1), abs(-lo[-1, 0] / vt_ref - 1))
+    check(d <= 5e-3, f"pair: tangential velocities after {lo[-1, 0]:+.6f}, {up[-1, 0]:+.6f} m/s, "
+          f"impulse theory -+{vt_ref:.6f} m/s (largest {d:.3%}, bound 0.5 %; restitution {e:.5f})")
+    spins = [abs(f[f"bodies/{b}/angular_velocity"][-1, 1]) for b in ("lower", "upper")]
+    d = max(abs(w / w_ref - 1) for w in spins)
+    check(d <= 5e-3, f"pair: spins after {spins[0]:.4f}, {spins[1]:.4f} rad/s, impulse theory "
+          f"{w_ref:.4f} rad/s (largest {d:.3%}, bound 0.5 %)")
+    drift = np.abs(lo + up - (lo[0] + up[0])).max() / (2 * VN)
+    check(drift <= 1e-9, f"pair: linear momentum kept to {drift:.1e} of m v_n (bound 1e-9: the "
+          "friction forces are equal and opposite)")
+    pair = f["contacts/impact"]
+    Fn, Ft = pair["normal_force"][:], pair["tangential_force"][:]
+    i = int(np.argmax(Fn))
+    ratio = np.linalg.norm(Ft[i]) / Fn[i]
+    check(abs(ratio / MU - 1) <= 1e-6 and int(pair["sticking_points"][:].max()) == 0,
+          f"pair: tangential / normal force at the peak {ratio:.8f} (mu 0.1), no point sticks")
+    pk = pair["peak_pressure"]
+    t, wt, role, fac = pk["traction"][:], pk["weight"][:], pk["role"][:], pk.attrs["role_factor"]
+    sign = np.where(role == 0, 1.0, -1.0)
+    Ft_peak = fac * ((sign * wt)[:, None] * t).sum(axis=0)
+    check(bool(np.all(t[role == 0, 0] >= 0)) and bool(np.all(t[role == 1, 0] <= 0))
+          and abs(np.linalg.norm(Ft_peak) / (MU * float(pk.attrs["normal_force_N"])) - 1) <= 1e-6,
+          f"pair: peak traction of both roles against their sliding, resultant "
+          f"{np.linalg.norm(Ft_peak):.4f} N = mu x normal")
+    peak, peak0 = float(f.attrs["max_contact_force_N"]), float(g.attrs["max_contact_force_N"])
+    d = peak / peak0 - 1
+    check(abs(d) <= 5e-3, f"pair: normal force peak {peak:.3f} N, frictionless {peak0:.3f} N "
+          f"({d:+.3%}, bound 0.5 %)")
+    W = f["energy/dissipated"][:]
+    en = f["energy"]
+    loss = sum(en[k][0] - en[k][-1] for k in ("kinetic", "elastic", "contact"))
+    d = W[-1] / loss - 1
+    check(bool(np.all(np.diff(W) >= 0.0)) and abs(d) <= 2e-2,
+          f"pair: friction work {W[-1]:.5e} J against the energy lost {loss:.5e} J ({d:+.2%}, "
+          "bound 2 % as above)")
 check.exit()

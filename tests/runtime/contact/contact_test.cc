@@ -411,3 +411,89 @@ TEST_CASE("flat faces end-on: edge points just beside the other face are held by
     }
   }
 }
+
+TEST_CASE("contact pair with friction: equal and opposite, Coulomb's bound, terms on both bodies",
+          "[contact][friction]") {
+  // The overlapping caps of the tests above, pressed 0.04 further together, moving with random
+  // velocities, mu = 0.3 and a slip velocity at which some points stick and some slip. Every active
+  // point of both roles carries f_t = -mu f_n v_t / s with v_t the relative velocity of its
+  // collocation point and its foot point (coulomb_friction.h): the resultants on A and B stay equal
+  // and opposite, the tangential one below mu times the normal one, the power >= 0, the traction
+  // field's resultant is the tangential force; and the kFrictionDamping terms are d h / d s_v of
+  // both bodies exactly (positions held: normals, foot points and normal forces fixed),
+  // against central differences with the truncation and round-off of the obstacle's
+  // friction test (obstacle_contact_test.cc): 1e-6 of the largest term.
+  const auto [a, b] = facingCaps();
+  FloatingBody3d A("A", a), B("B", b);
+  ContactOptions opt;
+  opt.penalty = 1e4;
+  opt.friction.coefficient = 0.3;
+  opt.friction.slip_velocity = 1e-2;  // m/s: |v_t| 0.008-0.015 here
+  ContactPair pair("A-B", 0, A, 0, 1, B, 0, opt);
+  const auto [spA, spB0] = overlappingStates();
+  Eigen::VectorXd spB = spB0;
+  spB(2) -= 0.12;  // pressed further in: more active points
+  Eigen::VectorXd sv(18);
+  sv << 2e-3, -1e-3, 5e-4, 3e-3, -2e-3, 1e-3, 0.01, -0.02, 0.015,  // A
+      2e-3, -1e-3, 5e-4, -2e-3, 1e-3, 2e-2, -0.01, 0.005, 0.02;    // B: spun about z
+  auto forces = [&](const Eigen::VectorXd& v, ContactState* st) {
+    Eigen::VectorXd h = Eigen::VectorXd::Zero(18);
+    pair.evaluate(A, A.pose(spA.data()), B, B.pose(spB.data()), h.data(), h.data() + 9, st,
+                  v.data(), v.data() + 9);
+    return h;
+  };
+  ContactState s0;
+  const Eigen::VectorXd h0 = forces(sv, &s0);
+  REQUIRE(s0.active_points > 10);
+  REQUIRE(s0.projection_failures == 0);
+  CHECK(s0.sticking_points > 0);
+  CHECK(s0.slipping_points > 0);
+  CHECK(s0.sticking_points + s0.slipping_points == s0.active_points);
+  const Eigen::Vector3d FA = A.pose(spA.data()).A * h0.head<3>();
+  const Eigen::Vector3d FB = B.pose(spB.data()).A * h0.segment<3>(9);
+  CHECK((FA + FB).norm() <= 1e-12 * FA.norm());
+  CHECK((FA - s0.force).norm() <= 1e-12 * FA.norm());
+  CHECK(s0.tangential_force.norm() > 0.01 * s0.normal_force);
+  CHECK(s0.tangential_force.norm() < 0.3 * s0.normal_force);
+  CHECK(s0.friction_power > 0.0);
+  // The traction field: role r's tangential force on its own body is sum t_i w_i factor.
+  const ContactPressure& field = pair.pressureField();
+  Eigen::Vector3d tOnA = Eigen::Vector3d::Zero();
+  for (Eigen::Index i = 0; i < field.pressure.size(); ++i) {
+    if (field.pressure(i) == 0.0) CHECK(field.traction.row(i).isZero(0.0));
+    CHECK(std::abs(field.traction.row(i).dot(field.normal.row(i))) <= 1e-12 * field.pressure(i));
+    const double sign = field.role[i] == 0 ? 1.0 : -1.0;
+    tOnA += sign * field.factor * field.weight(i) * field.traction.row(i).transpose();
+  }
+  CHECK((tOnA - s0.tangential_force).norm() <= 1e-12 * s0.tangential_force.norm());
+
+  const std::vector<StiffnessTerm> terms = pair.stiffnessTerms();
+  int damping = 0, load = 0;
+  for (const StiffnessTerm& t : terms) {
+    damping += t.kind == StiffnessTerm::Kind::kFrictionDamping;
+    load += t.kind == StiffnessTerm::Kind::kFrictionLoad;
+  }
+  CHECK(damping == 2 * s0.active_points);
+  CHECK(load == s0.active_points);
+  // d h / d s_v from the terms: -k [bvC; -bvT] [bpC; -bpT]^T over the stacked velocities.
+  auto stacked = [](int body, const Eigen::VectorXd& c, int other, const Eigen::VectorXd& t) {
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(18);
+    x.segment(9 * body, 9) += c;
+    x.segment(9 * other, 9) -= t;
+    return x;
+  };
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(18, 18);
+  for (const StiffnessTerm& t : terms) {
+    if (!t.onVelocities()) continue;
+    K -= t.k * stacked(t.body_c, t.bvC, t.body_t, t.bvT) *
+         stacked(t.body_c, t.bpC, t.body_t, t.bpT).transpose();
+  }
+  const double step = 1e-7;
+  for (int j = 0; j < 18; ++j) {
+    INFO("velocity " << j);
+    const Eigen::VectorXd d = Eigen::VectorXd::Unit(18, j);
+    const Eigen::VectorXd fd =
+        (forces(sv + step * d, nullptr) - forces(sv - step * d, nullptr)) / (2.0 * step);
+    CHECK((fd - K.col(j)).cwiseAbs().maxCoeff() <= 1e-6 * K.cwiseAbs().maxCoeff());
+  }
+}
