@@ -7,12 +7,15 @@
                             their sum (what the run kept)
   RESULT_penetration.png    largest penetration of every pair (um)
   RESULT_active_points.png  collocation points in contact
+  RESULT_friction.png       pairs with friction: |tangential force| against mu times the
+                            normal force (the slip limit) over time
   RESULT_stress_lines.png   von Mises stress along the SIDs' stress lines at the force peak,
                             with Hertz's field where the result has it (paper Fig. 10)
   RESULT_pressure.png       contact pressure at the collocation points at each pair's force
                             peak against the distance from the contact axis (axisymmetric
                             bodies: the radius), with Hertz's p0 sqrt(1 - r^2/a^2) where the
-                            stress lines hold Hertz's a and p0 for the same force
+                            stress lines hold Hertz's a and p0 for the same force; with
+                            friction also the tangential traction |t| (crosses)
 
 Pictures without data (no contact pairs, no stress lines) are skipped. Everything is read
 from the file (schemas/result_format.md); nothing is recomputed but Hertz's force history
@@ -166,6 +169,29 @@ def plot_pair_series(f, t, base, zoom, written, name, scale, ylabel, suffix):
     save(fig, base + suffix, written)
 
 
+def plot_friction(f, t, base, zoom, written):
+    """|tangential_force| against mu times normal_force of every pair with friction."""
+    pairs = [p for p in f.get("contacts", {}) if "tangential_force" in f["contacts"][p]]
+    if not pairs:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for pair in pairs:
+        g = f["contacts"][pair]
+        mu = float(g.attrs["friction_coefficient"])
+        line, = ax.plot(1e6 * t, np.linalg.norm(g["tangential_force"][:len(t)], axis=1),
+                        label=f"{pair}: |tangential force|")
+        ax.plot(1e6 * t, mu * g["normal_force"][:len(t)], "--", lw=1, color=line.get_color(),
+                label=f"{pair}: mu x normal force (mu = {mu:g}): the slip limit")
+    if zoom:
+        lo, hi = contact_window(f, t)
+        ax.set_xlim(1e6 * lo, 1e6 * hi)
+    ax.set_xlabel("time [us]")
+    ax.set_ylabel("force [N]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, base + "_friction.png", written)
+
+
 def plot_stress_lines(f, base, written):
     if "stress_lines" not in f or f["stress_lines"].attrs["time_s"] < 0:  # no contact yet
         return
@@ -227,9 +253,14 @@ def plot_pressure(f, base, written):
             r = np.linalg.norm(d - np.outer(d @ e, e), axis=1)
         for role in sorted(set(g["role"][()])):
             m = g["role"][()] == role
-            ax.plot(1e3 * r[m], 1e-6 * p[m], "o", ms=4, mfc="none",
-                    label=f"ffrsim: {pair}, role {role} ({g.attrs['normal_force_N']:.2f} N, "
-                          f"t = {1e6 * g.attrs['time_s']:.2f} us)")
+            line, = ax.plot(1e3 * r[m], 1e-6 * p[m], "o", ms=4, mfc="none",
+                            label=f"ffrsim: {pair}, role {role} "
+                                  f"({g.attrs['normal_force_N']:.2f} N, "
+                                  f"t = {1e6 * g.attrs['time_s']:.2f} us)")
+            if "traction" in g:  # a pair with friction: |t| beside p, the same colour
+                t = np.linalg.norm(g["traction"][()][m], axis=1)
+                ax.plot(1e3 * r[m], 1e-6 * t, "x", ms=4, color=line.get_color(),
+                        label=f"ffrsim: {pair}, role {role}, tangential traction |t|")
         patch = hertz_patch(f, g.attrs["normal_force_N"])
         if patch:
             a, p0 = patch
@@ -239,7 +270,7 @@ def plot_pressure(f, base, written):
             ax.set_xlim(0, 2e3 * a)
     ax.set_title("contact pressure at each pair's force peak (c_p max(0, -g_n))", fontsize=10)
     ax.set_xlabel("distance from the contact axis [mm]")
-    ax.set_ylabel("pressure [MPa]")
+    ax.set_ylabel("pressure, traction [MPa]")
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     save(fig, base + "_pressure.png", written)
@@ -282,6 +313,7 @@ def draw(f, base, zoom):
                      "largest penetration [um]", "_penetration.png")
     plot_pair_series(f, t, base, zoom, written, "active_points", 1,
                      "collocation points in contact", "_active_points.png")
+    plot_friction(f, t, base, zoom, written)
     plot_stress_lines(f, base, written)
     plot_pressure(f, base, written)
     return t, written

@@ -44,7 +44,8 @@ void resolveEllipticalImpact(double k1, double k2, const HertzSphere& self,
   const HertzSphere partner = partnerOf(request, self);
   const double kp1 = request.partner == DesignRequest::Partner::kSame ? k1 : 1.0 / partner.radius;
   const double kp2 = request.partner == DesignRequest::Partner::kSame ? k2 : 1.0 / partner.radius;
-  const RelativeCurvatures r = relativeCurvatures(k1, k2, kp1, kp2, 1.0);
+  // Aligned (relativeCurvatures at alpha = 0), formed directly: the same bits as always.
+  const RelativeCurvatures r{0.5 * (k1 + kp1), 0.5 * (k2 + kp2)};
   const HertzImpact h = ellipticalHertzImpact(r, self, partner, request.approach_speed);
   const HertzEllipse peak = hertzEllipse(r.A, r.B, effectiveModulus(self, partner), h.max_force);
   d->hertz = h;

@@ -16,7 +16,8 @@ written separately) holds:
      energy lost within 2 % (the regularised law's dissipation is evaluated with the body's
      dynamic velocities: the quasi-static coordinates' rates, which carry the contact's
      local deformation, are not in it; measured 0.1 %); the result's friction datasets
-     (tangential_force, sticking_points, slipping_points, friction_coefficient);
+     (tangential_force, sticking_points, slipping_points, friction_coefficient), which
+     benchmarks/plot_result.py draws (RESULT_friction.png, the traction beside the pressure);
   4. same bits on 1 and 2 threads; a run stopped in the contact and continued with
      --restart ends within 1e-4 of the straight run (the law has no internal state; CVODE
      restarts at order 1);
@@ -25,6 +26,9 @@ written separately) holds:
      within 0.5 % of impulse theory, linear momentum kept, the tangential force and the
      traction field of both roles as above, the normal peak within 0.5 % of the frictionless
      pair's, the friction work as in 3.
+  6. a sphere dropped with backspin (backspin_drop.yaml, mu = 0.3): the slip stops during
+     the impact and it leaves rolling, backwards, with the velocity and spin of impulse
+     theory within 0.5 % and its contact point's slip below 0.1 % of the initial one.
 
 usage: check_friction.py FFRSIM SOURCE_DIR SID_DIR OUT_DIR
 """
@@ -37,7 +41,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from result_checks import Checks, inertial_velocity  # noqa: E402
+from result_checks import Checks, inertial_velocity, rotation  # noqa: E402
 from same_bits import differences  # noqa: E402
 
 ffrsim, source, sids, out = sys.argv[1:5]
@@ -130,6 +134,15 @@ with h5py.File(rough, "r") as f, h5py.File(smooth, "r") as g:
     check(abs(d) <= 2e-2, f"friction work {W[-1]:.5e} J against the energy lost {kin_loss:.5e} J "
           f"({d:+.2%}, bound 2 %: the quasi-static coordinates' share is not in it)")
 
+# The plot script draws the friction's history and the traction beside the pressure.
+pictures = os.path.join(out, "pictures")
+r = subprocess.run([sys.executable, os.path.join(source, "benchmarks", "plot_result.py"), rough,
+                    "-o", pictures], capture_output=True, text=True)
+check(r.returncode == 0 and os.path.isfile(os.path.join(pictures, "rough_friction.png"))
+      and os.path.isfile(os.path.join(pictures, "rough_pressure.png")),
+      f"plot_result.py: exit {r.returncode}, rough_friction.png and rough_pressure.png "
+      f"{r.stderr.strip()[-200:]}")
+
 # 4. Threads and restart.
 one = run("rough_1thread", "--threads", "1")
 two = run("rough_2threads", "--threads", "2")
@@ -202,4 +215,29 @@ with h5py.File(pair_rough, "r") as f, h5py.File(pair_smooth, "r") as g:
     check(bool(np.all(np.diff(W) >= 0.0)) and abs(d) <= 2e-2,
           f"pair: friction work {W[-1]:.5e} J against the energy lost {loss:.5e} J ({d:+.2%}, "
           "bound 2 % as above)")
+# 6. Backspin: dropped onto the floor spinning, the sphere leaves rolling (backspin_drop.yaml).
+spin_scene = os.path.join(source, "configs", "scenes", "backspin_drop.yaml")
+dropped = os.path.join(out, "backspin.h5")
+check.run([ffrsim, "-q", spin_scene, "--sid-path", sids, "-o", dropped])
+with h5py.File(dropped, "r") as f:
+    check.status_completed(f)
+    v = inertial_velocity(f, "ball")[-1]
+    w_in = rotation(f["bodies/ball/orientation"][-1:])[0] @ f["bodies/ball/angular_velocity"][-1]
+    W0, MU3 = -10.0, 0.3  # rad/s about y (inertial), as the scene
+    e = v[2] / VN
+    vt_ref, w_ref, vc_ref = impulse_theory(VN, 0.0, W0, R, mass, inertia, MU3, e)
+    check(abs(vc_ref) <= 1e-12, f"impulse theory: the slip stops, the sphere rolls off at "
+          f"{vt_ref:+.6f} m/s, {w_ref:+.4f} rad/s")
+    d = max(abs(v[0] / vt_ref - 1), abs(w_in[1] / w_ref - 1))
+    check(d <= 5e-3, f"backspin: leaves at {v[0]:+.6f} m/s, spin {w_in[1]:+.4f} rad/s about y "
+          f"(largest difference {d:.3%} from impulse theory, bound 0.5 %)")
+    vc = v[0] - R * w_in[1]
+    check(abs(vc) <= 1e-3 * abs(R * W0), f"backspin: rolling, the contact point slips at "
+          f"{vc:+.2e} m/s after the impact against {R * abs(W0):.2f} m/s before (bound 0.1 %)")
+    pair = f["contacts/impact"]
+    ratio = np.linalg.norm(pair["tangential_force"][:], axis=1) / \
+        np.maximum(pair["normal_force"][:], 1e-300)
+    check(int(pair["sticking_points"][:].max()) > 0 and float(ratio.max()) <= MU3,
+          f"backspin: points stick ({int(pair['sticking_points'][:].max())} at most), "
+          f"|f_t| / f_n at most {ratio.max():.6f} <= mu")
 check.exit()
