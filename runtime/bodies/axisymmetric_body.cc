@@ -105,6 +105,17 @@ void AxisymmetricBody::massBlocks(const double*, Eigen::MatrixXd& C, Eigen::Matr
   Mrr = Eigen::MatrixXd::Constant(1, 1, sid_->mass);
 }
 
+// v = (0, s_v(0)) + A u_dot: the axial translation and the elastic velocity (pointGradients'
+// bv).
+Eigen::VectorXd AxisymmetricBody::pointVelocity(const BodyPose& pose, const double* sv,
+                                                const Eigen::VectorXd&,
+                                                const Eigen::VectorXd& u_dot) const {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(2);
+  v(1) = sv[0];
+  if (u_dot.size() > 0) v += pose.A * u_dot;
+  return v;
+}
+
 void AxisymmetricBody::pointGradients(const BodyPose& pose, const Eigen::VectorXd&,
                                       const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
                                       Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {

@@ -29,6 +29,8 @@ class AxisymmetricBody : public BodyModel {
                      const Eigen::Vector3d& gravity, double* accel) const override;
   void solveMass(const double* sp, Eigen::MatrixXd& B) const override;
   void massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const override;
+  Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv, const Eigen::VectorXd& x,
+                                const Eigen::VectorXd& u_dot) const override;
   void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::MatrixXd& Phi_x,
                       const Eigen::VectorXd& n, Eigen::VectorXd& bv,
                       Eigen::VectorXd& bp) const override;

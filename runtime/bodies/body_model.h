@@ -92,6 +92,12 @@ class BodyModel {
   virtual void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
                               const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
                               Eigen::VectorXd& bv, Eigen::VectorXd& bp) const = 0;
+  // The world velocity (d components, m/s) of the material point at x (deformed, body
+  // frame) whose elastic velocity in the body frame is u_dot (d, Phi_x qdot), at the
+  // velocities sv: G_v^T sv of pointGradients' bv along the world axes, without forming them.
+  virtual Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv,
+                                        const Eigen::VectorXd& x,
+                                        const Eigen::VectorXd& u_dot) const = 0;
   // Adds the rigid part of the generalised force of a world force f (d components, N) acting
   // at body point x (d, deformed, m): translational and rotational parts of Eq. (18).
   virtual void addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x,

@@ -284,6 +284,17 @@ void FloatingBody3d::massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::Mat
   C.rightCols<3>() = inv.CrT.transpose();
 }
 
+// v = A (v_R + omega x x + u_dot), v_R and omega in body components (pointGradients' bv).
+Eigen::VectorXd FloatingBody3d::pointVelocity(const BodyPose& pose, const double* sv,
+                                              const Eigen::VectorXd& x,
+                                              const Eigen::VectorXd& u_dot) const {
+  const Eigen::Vector3d vR(sv[0], sv[1], sv[2]), omega(sv[3], sv[4], sv[5]);
+  const Eigen::Vector3d xb = x;
+  Eigen::Vector3d local = vR + omega.cross(xb);
+  if (u_dot.size() > 0) local += Eigen::Vector3d(u_dot);
+  return pose.A * local;
+}
+
 void FloatingBody3d::pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
                                     const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
                                     Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {

@@ -92,6 +92,14 @@ Eigen::VectorXd CollocatedSurface::bodyPoint(int i, const Eigen::VectorXd& u) co
   return xb;
 }
 
+Eigen::VectorXd CollocatedSurface::pointDisplacement(int i, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd d = Eigen::VectorXd::Zero(dim);
+  if (u.size() == 0) return d;
+  for (int k = combo_offset[i]; k < combo_offset[i + 1]; ++k)
+    d += combo_value[k] * u.segment(combo_local[k] * dim, dim);
+  return d;
+}
+
 double CollocatedSurface::size() const {
   Eigen::MatrixXd P(cps.size(), dim);
   for (std::size_t i = 0; i < cps.size(); ++i) P.row(i) = P0.row(cps[i]);

@@ -45,6 +45,10 @@ struct CollocatedSurface {
   Eigen::VectorXd displacements(const Eigen::VectorXd& q) const { return PhiSt.transpose() * q; }
   // Collocation point i in the body frame, from the control points' displacements u.
   Eigen::VectorXd bodyPoint(int i, const Eigen::VectorXd& u) const;
+  // Collocation point i's displacement (or velocity) from the control points' ones u
+  // (zero for empty u): bodyPoint less the undeformed point (bodyPoint keeps its own sum,
+  // from the undeformed point on: the frictionless results' bits).
+  Eigen::VectorXd pointDisplacement(int i, const Eigen::VectorXd& u) const;
   // The diagonal of the surface's undeformed control points' box (m).
   double size() const;
   // Whether the undeformed surface is planar (a straight meridian in 2D): its control points

@@ -149,7 +149,7 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   bodies_[1] = &B;
   poses_[0] = pa;
   poses_[1] = pb;
-  const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
+  World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
   // Bounding-box pre-check: apart means no work.
   for (int c = 0; c < dim_; ++c) {
     if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) {
@@ -163,6 +163,10 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   const TargetMotion motion[2] = {targetMotion(side_[0], wa.u, renew),
                                   targetMotion(side_[1], wb.u, renew)};
   const double factor = roleFactor();
+  if (options_.friction.active()) {
+    wa.udot = elasticVelocities(side_[0], A, svA);
+    wb.udot = elasticVelocities(side_[1], B, svB);
+  }
   ContactState s0, s1;
   collocate(0, A, pa, wa, B, pb, wb, hA, hB, factor, motion[1], &s0, state != nullptr, svA, svB);
   if (options_.both_roles)
@@ -199,9 +203,7 @@ struct ContactPair::PointResult {
   Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
   int element = -1;
   Eigen::VectorXd s;
-  // Friction (addFriction): the law's values, the points' gradients (nv x d).
-  PointFriction friction;
-  Eigen::MatrixXd GC, GT;
+  PointFriction friction;  // with friction (addFriction): the law's values
 };
 
 // Sums of collocate()'s active points, formed serially in point order.
@@ -303,7 +305,7 @@ void ContactPair::addPointForces(int c, int i, const PointResult& r, double fact
     sums.touched[st.local[f]] = 1;
   }
   active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
-                     sums.R.row(0).transpose(), r.xb, r.xt, r.n, r.GC, r.GT, r.friction});
+                     sums.R.row(0).transpose(), r.xb, r.xt, r.n, r.friction});
 }
 
 Eigen::MatrixXd ContactPair::footModes(const Side& st, const BodyModel& T, int element,
@@ -318,29 +320,32 @@ Eigen::MatrixXd ContactPair::footModes(const Side& st, const BodyModel& T, int e
   return PhiTt;
 }
 
+Eigen::VectorXd ContactPair::elasticVelocities(const Side& side, const BodyModel& body,
+                                               const double* sv) const {
+  if (body.nq() == 0) return Eigen::VectorXd();
+  return side.displacements(
+      Eigen::Map<const Eigen::VectorXd>(sv + body.numRigidVelocities(), body.nq()));
+}
+
 void ContactPair::addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
-                              const BodyModel& T, const BodyPose& pt, const double* svC,
-                              const double* svT) const {
+                              const World& wc, const BodyModel& T, const BodyPose& pt,
+                              const World& wt, const double* svC, const double* svT) const {
   const Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_;
-  Eigen::MatrixXd R;
-  st.surface.basis(r.element, r.s.data(), 0, R);
-  const Eigen::MatrixXd PhiC = sc.PhiCt.middleCols(i * d, d).transpose();
-  const Eigen::MatrixXd PhiT = footModes(st, T, r.element, R.row(0).transpose()).transpose();
-  r.GC.resize(C.numVelocities(), d);
-  r.GT.resize(T.numVelocities(), d);
-  Eigen::VectorXd bv, bp;
-  for (int k = 0; k < d; ++k) {
-    const Eigen::VectorXd e = Eigen::VectorXd::Unit(d, k);
-    C.pointGradients(pc, r.xb, PhiC, e, bv, bp);
-    r.GC.col(k) = bv;
-    T.pointGradients(pt, r.xt, PhiT, e, bv, bp);
-    r.GT.col(k) = bv;
+  // The foot point's elastic velocity: the target surface's basis at s over its control
+  // points' velocities.
+  Eigen::VectorXd udotT = Eigen::VectorXd::Zero(d);
+  if (wt.udot.size() > 0) {
+    Eigen::MatrixXd R;
+    st.surface.basis(r.element, r.s.data(), 0, R);
+    for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
+      const int f = st.surface.functions(r.element)[k];
+      udotT += R(0, k) * wt.udot.segment(st.local[f] * d, d);
+    }
   }
-  const Eigen::VectorXd v =
-      r.GC.transpose() * Eigen::Map<const Eigen::VectorXd>(svC, C.numVelocities()) -
-      r.GT.transpose() * Eigen::Map<const Eigen::VectorXd>(svT, T.numVelocities());
+  const Eigen::VectorXd v = C.pointVelocity(pc, svC, r.xb, sc.pointDisplacement(i, wc.udot)) -
+                            T.pointVelocity(pt, svT, r.xt, udotT);
   r.friction = coulombFriction(options_.friction, r.f.norm(), v, r.n);
   r.f += r.friction.force;
 }
@@ -389,7 +394,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   const bool friction = options_.friction.active();
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
-    if (r.active && friction) addFriction(c, i, r, C, pc, T, pt, svC, svT);
+    if (r.active && friction) addFriction(c, i, r, C, pc, wc, T, pt, wt, svC, svT);
     if (state) addDiagnostics(r, sc.weight(i), factor, *state);
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
     if (record) {
@@ -421,10 +426,11 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
     term.body_c = a.c == 0 ? bodyA() : bodyB();
     term.body_t = a.c == 0 ? bodyB() : bodyA();
     term.k = a.k;
-    C.pointGradients(poses_[a.c], a.xb, sc.PhiCt.middleCols(a.i * d, d).transpose(), a.n, term.bvC,
-                     term.bpC);
-    T.pointGradients(poses_[1 - a.c], a.xt, PhiTt.transpose(), a.n, term.bvT, term.bpT);
-    if (options_.friction.active()) addFrictionTerms(a, term);
+    const Eigen::MatrixXd PhiC = sc.PhiCt.middleCols(a.i * d, d).transpose();
+    const Eigen::MatrixXd PhiT = PhiTt.transpose();
+    C.pointGradients(poses_[a.c], a.xb, PhiC, a.n, term.bvC, term.bpC);
+    T.pointGradients(poses_[1 - a.c], a.xt, PhiT, a.n, term.bvT, term.bpT);
+    if (options_.friction.active()) addFrictionTerms(a, PhiC, PhiT, term);
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;
@@ -435,17 +441,20 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
 // G_C^T s_vC - G_T^T s_vT: the damping along e1 and e2, d h / d s_v = -c [G_C e; -G_T e]
 // [G_C e; -G_T e]^T, and the normal force's share, d h / d s_p = -k [G_C l; -G_T l]
 // [bpC; -bpT]^T with l = d f_t / d f_n (k = c_p w_i times the role factor).
-void ContactPair::addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const {
+void ContactPair::addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& PhiC,
+                                   const Eigen::MatrixXd& PhiT, const StiffnessTerm& normal) const {
   const PointFriction& fr = a.friction;
   const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e,
                        bool velocities) {
+    if (velocities && negligibleDamping(fr, k)) return;
     StiffnessTerm t;
     t.body_c = normal.body_c;
     t.body_t = normal.body_t;
     t.kind = kind;
     t.k = k;
-    t.bvC = a.GC * e;
-    t.bvT = a.GT * e;
+    Eigen::VectorXd unused;  // G_C e and G_T e
+    bodies_[a.c]->pointGradients(poses_[a.c], a.xb, PhiC, e, t.bvC, unused);
+    bodies_[1 - a.c]->pointGradients(poses_[1 - a.c], a.xt, PhiT, e, t.bvT, unused);
     t.bpC = velocities ? t.bvC : normal.bpC;
     t.bpT = velocities ? t.bvT : normal.bpT;
     terms_.push_back(std::move(t));

@@ -125,6 +125,9 @@ class ContactPair : public SurfaceContact {
     Eigen::VectorXd lo, hi;  // bounding box of the surface's points
     // The surface point at the centre of its parameter domain and its world normal.
     Eigen::VectorXd mid_x, mid_n;
+    // With friction: the surface control points' elastic velocities PhiSt^T qdot (body
+    // frame, cps order; empty for a body without elastic coordinates).
+    Eigen::VectorXd udot;
   };
   // Depth of x behind the surface for a closest point p on the edge (not orthogonal): behind
   // both the tangent plane at p and the one at the surface's centre (a point beside the
@@ -166,18 +169,20 @@ class ContactPair : public SurfaceContact {
   void searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
                    double orientT, double factor, const TargetMotion& motion,
                    const Eigen::VectorXd& x, const Eigen::VectorXd& y, PointResult& r) const;
+  // The side's surface control points' elastic velocities (World::udot) at velocities sv.
+  Eigen::VectorXd elasticVelocities(const Side& side, const BodyModel& body,
+                                    const double* sv) const;
   // Target side st's modes at a foot point, transposed (T.nq() x d): the surface basis
   // `basis` of `element` over st's control points.
   Eigen::MatrixXd footModes(const Side& st, const BodyModel& T, int element,
                             const Eigen::VectorXd& basis) const;
   // Phase 3, friction at active point i of side c (runtime/contact/coulomb_friction.h): the
-  // relative velocity of the collocation point and the foot point, G_C^T svC - G_T^T svT
-  // (the gradients of the two points' world positions per world axis into r.GC, r.GT), and
-  // the tangential force added to r.f (on C; -r.f on T). The force's normal part is the
-  // penalty's f_n = |r.f| (role factor included).
+  // relative velocity of the collocation point and the foot point (BodyModel::pointVelocity
+  // with the sides' World::udot), and the tangential force added to r.f (on C; -r.f on T).
+  // The force's normal part is the penalty's f_n = |r.f| (role factor included).
   void addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
-                   const BodyModel& T, const BodyPose& pt, const double* svC,
-                   const double* svT) const;
+                   const World& wc, const BodyModel& T, const BodyPose& pt, const World& wt,
+                   const double* svC, const double* svT) const;
   // Phase 3, one point's diagnostics: a failed search, its depth beyond the edge and, if
   // active, its force, penetration and penalty energy 1/2 c_p g_n^2 w_i (times `factor`).
   void addDiagnostics(const PointResult& r, double weight, double factor,
@@ -199,13 +204,13 @@ class ContactPair : public SurfaceContact {
     int c = 0, i = 0, element = -1;
     double k = 0.0;
     Eigen::VectorXd basis, xb, xt, n;
-    Eigen::MatrixXd GC, GT;  // friction: the points' position gradients (nv x d per body)
     PointFriction friction;  // friction: its law's values at the point
   };
   // Friction's terms of active point a beside its normal term (as ObstacleContact's, with
   // the target's gradients): damping along e1 and e2 on both bodies' velocities, and the
-  // normal force's share.
-  void addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const;
+  // normal force's share. PhiC, PhiT: the modes at the point and the foot point (d x nq).
+  void addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& PhiC,
+                        const Eigen::MatrixXd& PhiT, const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
   BodyPose poses_[2];

@@ -35,6 +35,15 @@ struct PointFriction {
   double c1 = 0.0, c2 = 0.0;
 };
 
+// Whether the Newton matrix may leave out the point's damping term with coefficient c: below
+// kNegligibleDamping times its larger one. In gross slip c1 / c2 = (eps / |v_t|)^2 (1e-10 at
+// 0.1 m/s): a term that changes the matrix by less than that relative amount costs a column
+// of its low-rank part (runtime/integration/structured_newton.h: O(n r^2)) for nothing.
+constexpr double kNegligibleDamping = 1e-8;
+inline bool negligibleDamping(const PointFriction& f, double c) {
+  return c < kNegligibleDamping * (f.c1 > f.c2 ? f.c1 : f.c2);
+}
+
 // The friction at a point with normal force f_n >= 0 (N), relative velocity v and unit
 // normal n (both d = 2 or 3 components).
 PointFriction coulombFriction(const FrictionLaw& law, double normal_force, const Eigen::VectorXd& v,

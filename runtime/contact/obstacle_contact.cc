@@ -54,18 +54,10 @@ double ObstacleContact::boxGap(const ForceContext& at) const {
 }
 
 void ObstacleContact::addFriction(const BodyModel& A, const BodyPose& pa, const double* sv,
-                                  double fn, Eigen::VectorXd& f, ContactState& s,
-                                  ActivePoint& point) const {
-  FFRIGA_CHECK(sv != nullptr, "friction needs the body's velocities");
-  const int nv = A.numVelocities();
-  const Eigen::MatrixXd PhiT = side_.PhiCt.middleCols(point.i * dim_, dim_).transpose();
-  point.G.resize(nv, dim_);
-  Eigen::VectorXd bv, bp;
-  for (int k = 0; k < dim_; ++k) {
-    A.pointGradients(pa, point.xb, PhiT, Eigen::VectorXd::Unit(dim_, k), bv, bp);
-    point.G.col(k) = bv;
-  }
-  const Eigen::VectorXd v = point.G.transpose() * Eigen::Map<const Eigen::VectorXd>(sv, nv);
+                                  const Eigen::VectorXd& udot, double fn, Eigen::VectorXd& f,
+                                  ContactState& s, ActivePoint& point) const {
+  const Eigen::VectorXd v =
+      A.pointVelocity(pa, sv, point.xb, side_.pointDisplacement(point.i, udot));
   point.friction = coulombFriction(options_.friction, fn, v, point.n);
   f += point.friction.force;
   s.tangential_force.head(dim_) += point.friction.force;
@@ -90,6 +82,12 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
   }
   const int nc = side_.numPoints();
   searches_ += nc;
+  const bool friction = options_.friction.active();
+  FFRIGA_CHECK(!friction || sv != nullptr, "friction needs the body's velocities");
+  const Eigen::VectorXd udot =  // the surface's elastic velocities (friction)
+      friction && A.nq() > 0 ? side_.displacements(Eigen::Map<const Eigen::VectorXd>(
+                                   sv + A.numRigidVelocities(), A.nq()))
+                             : Eigen::VectorXd();
   Eigen::VectorXd fbSum = Eigen::VectorXd::Zero(A.nq());
   ContactState s;
   for (int i = 0; i < nc; ++i) {  // in point order: the same sums on any thread count
@@ -104,9 +102,9 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
     const Eigen::VectorXd n = p.normal.head(dim_);
     if (state) pressure_.set(0, i, x, -options_.penalty * p.gap, p.normal);
     Eigen::VectorXd f = (-k * p.gap) * n;
-    active_.push_back({i, k, xb, n, {}, {}});
-    if (options_.friction.active()) {
-      addFriction(A, pa, sv, -k * p.gap, f, s, active_.back());
+    active_.push_back({i, k, xb, n, {}});
+    if (friction) {
+      addFriction(A, pa, sv, udot, -k * p.gap, f, s, active_.back());
       if (state) pressure_.setTraction(0, i, active_.back().friction.force / side_.weight(i));
     }
     A.addRigidPointForce(pa, xb, f, hA);
@@ -129,26 +127,24 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
 // Friction's terms (runtime/contact/coulomb_friction.h), with the point's velocity G^T s_v:
 // the damping along e1 and e2, d h / d s_v = -c (G e)(G e)^T, and the normal force's share,
 // h_t = G f_n load with f_n = -k g: d h / d s_p = -k (G load) bp_n^T.
-void ObstacleContact::addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const {
+void ObstacleContact::addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& Phi,
+                                       const StiffnessTerm& normal) const {
   const PointFriction& fr = a.friction;
-  const auto add = [&](StiffnessTerm::Kind kind, double k, Eigen::VectorXd bv,
-                       const Eigen::VectorXd& bp) {
+  const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e) {
+    if (kind == StiffnessTerm::Kind::kFrictionDamping && negligibleDamping(fr, k)) return;
     StiffnessTerm t;
     t.body_c = bodyA();
     t.body_t = -1;
     t.kind = kind;
     t.k = k;
-    t.bvC = std::move(bv);
-    t.bpC = bp;
+    Eigen::VectorXd unused;
+    body_->pointGradients(pose_, a.xb, Phi, e, t.bvC, unused);  // G e
+    t.bpC = t.onVelocities() ? t.bvC : normal.bpC;
     terms_.push_back(std::move(t));
   };
-  const Eigen::VectorXd g1 = a.G * fr.e1;
-  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, g1, g1);
-  if (fr.e2.size() > 0) {
-    const Eigen::VectorXd g2 = a.G * fr.e2;
-    add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, g2, g2);
-  }
-  add(StiffnessTerm::Kind::kFrictionLoad, a.k, a.G * fr.load, normal.bpC);
+  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, fr.e1);
+  if (fr.e2.size() > 0) add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, fr.e2);
+  add(StiffnessTerm::Kind::kFrictionLoad, a.k, fr.load);
 }
 
 const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
@@ -160,9 +156,9 @@ const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
     term.body_c = bodyA();
     term.body_t = -1;
     term.k = a.k;
-    body_->pointGradients(pose_, a.xb, side_.PhiCt.middleCols(a.i * dim_, dim_).transpose(), a.n,
-                          term.bvC, term.bpC);
-    if (options_.friction.active()) addFrictionTerms(a, term);
+    const Eigen::MatrixXd Phi = side_.PhiCt.middleCols(a.i * dim_, dim_).transpose();
+    body_->pointGradients(pose_, a.xb, Phi, a.n, term.bvC, term.bpC);
+    if (options_.friction.active()) addFrictionTerms(a, Phi, term);
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;

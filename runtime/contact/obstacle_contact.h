@@ -69,17 +69,19 @@ class ObstacleContact : public SurfaceContact {
     int i = 0;
     double k = 0.0;
     Eigen::VectorXd xb, n;
-    // With friction: the point's velocity gradients along the world axes (nv x d: its
-    // velocity is G^T s_v) and its friction's linearisation.
-    Eigen::MatrixXd G;
-    PointFriction friction;
+    PointFriction friction;  // with friction: the law's values at the point
   };
-  // The point's friction at its normal force fn (N): adds the tangential force to f, its
-  // figures to s, and keeps G and the linearisation in `point`.
-  void addFriction(const BodyModel& A, const BodyPose& pa, const double* sv, double fn,
-                   Eigen::VectorXd& f, ContactState& s, ActivePoint& point) const;
-  // The point's friction terms for the Newton matrix (beside its normal term `normal`).
-  void addFrictionTerms(const ActivePoint& a, const StiffnessTerm& normal) const;
+  // The point's friction at its normal force fn (N), with the point's velocity
+  // (BodyModel::pointVelocity; udot: the surface control points' elastic velocities,
+  // displacements() of qdot): adds the tangential force to f, its figures to s, and keeps
+  // the linearisation in `point`.
+  void addFriction(const BodyModel& A, const BodyPose& pa, const double* sv,
+                   const Eigen::VectorXd& udot, double fn, Eigen::VectorXd& f, ContactState& s,
+                   ActivePoint& point) const;
+  // The point's friction terms for the Newton matrix (beside its normal term `normal`; Phi:
+  // its modes, d x nq): the velocity gradients bv along the law's directions.
+  void addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& Phi,
+                        const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* body_ = nullptr;
   BodyPose pose_;

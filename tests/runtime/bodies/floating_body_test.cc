@@ -229,3 +229,53 @@ TEST_CASE("floating body: SID Oe must agree with J1", "[ffr]") {
   sid->Oe.rightCols(3) *= 2.0;
   REQUIRE_THROWS_WITH(FloatingBody3d("b", sid), Catch::Contains("Oe and J1 disagree"));
 }
+
+TEST_CASE("point velocity: G^T s_v of the point's gradients and the rate of its position",
+          "[ffr][friction]") {
+  // Friction needs the world velocity of contact points at every right-hand side
+  // (BodyModel::pointVelocity); the stiffness terms use the gradients bv of pointGradients.
+  // The two must agree (to round-off: a sum of a few products), and both must be the time
+  // derivative of the point's world position origin + A (x0 + Phi_x q) along the body's
+  // position rates (central differences, step 1e-6 s: truncation O(1e-12) relative).
+  auto sid = std::make_shared<FlexibleBodySid>(test::springBody(4, 2e3));
+  FloatingBody3d body("b", sid);
+  const int nq = body.nq();
+  Eigen::VectorXd sp(7 + nq), sv(6 + nq);
+  sp << 0.1, 0.2, 0.3, 0.9, 0.1, -0.3, 0.2, 1e-2 * Eigen::VectorXd::Random(nq);
+  sp.segment<4>(3).normalize();
+  sv << 0.5, -0.3, 0.2, 3.0, -2.0, 5.0, 0.1 * Eigen::VectorXd::Random(nq);
+  const Eigen::Vector3d x0(0.02, -0.05, 0.07);
+  const Eigen::MatrixXd Phi = 0.05 * Eigen::MatrixXd::Random(3, nq);
+  auto world = [&](const Eigen::VectorXd& at) {
+    const BodyPose p = body.pose(at.data());
+    return Eigen::Vector3d(p.origin + p.A * (x0 + Phi * at.tail(nq)));
+  };
+  const BodyPose pose = body.pose(sp.data());
+  const Eigen::VectorXd x = x0 + Phi * sp.tail(nq);
+  const Eigen::VectorXd v = body.pointVelocity(pose, sv.data(), x, Phi * sv.tail(nq));
+  Eigen::MatrixXd G(6 + nq, 3);
+  Eigen::VectorXd bv, bp;
+  for (int k = 0; k < 3; ++k) {
+    body.pointGradients(pose, x, Phi, Eigen::VectorXd::Unit(3, k), bv, bp);
+    G.col(k) = bv;
+  }
+  CHECK((v - G.transpose() * sv).norm() <= 1e-14 * v.norm());
+  Eigen::VectorXd rates(7 + nq);
+  body.positionRates(sp.data(), sv.data(), rates.data());
+  const double h = 1e-6;
+  const Eigen::Vector3d fd = (world(sp + h * rates) - world(sp - h * rates)) / (2.0 * h);
+  INFO("pointVelocity " << v.transpose() << ", d/dt of the position " << fd.transpose());
+  CHECK((v - fd).norm() <= 1e-7 * v.norm());
+
+  // An axisymmetric body moves along its axis only (its rigid velocity), plus u_dot.
+  auto rigid = std::make_shared<FlexibleBodySid>(test::rigidBody(0.5, {1, 1, 1}));
+  rigid->model = ffriga::ModelKind::kAxisymmetric;
+  rigid->space_dim = 2;
+  rigid->control_points = Eigen::MatrixXd(0, 2);
+  AxisymmetricBody ring("a", rigid, -1.0);
+  const double y = 0.3, vy = -1.5;
+  const BodyPose pa = ring.pose(&y);
+  const Eigen::VectorXd va =
+      ring.pointVelocity(pa, &vy, Eigen::Vector2d(0.01, 0.02), Eigen::Vector2d(0.2, -0.1));
+  CHECK((va - (Eigen::Vector2d(0.0, vy) + pa.A * Eigen::Vector2d(0.2, -0.1))).norm() <= 1e-15);
+}
