@@ -101,6 +101,18 @@ def save(fig, path, written):
     written.append(path)
 
 
+def finish_time_plot(fig, ax, f, t, zoom, ylabel, path, written):
+    """Labels, grid and legend of a plot over time (zoomed to the contact if asked), saved."""
+    if zoom:
+        lo, hi = contact_window(f, t)
+        ax.set_xlim(1e6 * lo, 1e6 * hi)
+    ax.set_xlabel("time [us]")
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, path, written)
+
+
 def plot_force(f, t, base, zoom, written):
     if "contacts" not in f or len(f["contacts"]) == 0:
         return
@@ -122,14 +134,7 @@ def plot_force(f, t, base, zoom, written):
         if text(a.get("status", "")) == "running":
             title += ", so far"
         ax.set_title(title, fontsize=10)
-    if zoom:
-        lo, hi = contact_window(f, t)
-        ax.set_xlim(1e6 * lo, 1e6 * hi)
-    ax.set_xlabel("time [us]")
-    ax.set_ylabel("contact force [N]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    save(fig, base + "_force.png", written)
+    finish_time_plot(fig, ax, f, t, zoom, "contact force [N]", base + "_force.png", written)
 
 
 def plot_energy(f, t, base, written):
@@ -159,14 +164,7 @@ def plot_pair_series(f, t, base, zoom, written, name, scale, ylabel, suffix):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     for pair in f["contacts"]:
         ax.plot(1e6 * t, scale * f["contacts"][pair][name][:len(t)], label=pair)
-    if zoom:
-        lo, hi = contact_window(f, t)
-        ax.set_xlim(1e6 * lo, 1e6 * hi)
-    ax.set_xlabel("time [us]")
-    ax.set_ylabel(ylabel)
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    save(fig, base + suffix, written)
+    finish_time_plot(fig, ax, f, t, zoom, ylabel, base + suffix, written)
 
 
 def plot_friction(f, t, base, zoom, written):
@@ -182,14 +180,7 @@ def plot_friction(f, t, base, zoom, written):
                         label=f"{pair}: |tangential force|")
         ax.plot(1e6 * t, mu * g["normal_force"][:len(t)], "--", lw=1, color=line.get_color(),
                 label=f"{pair}: mu x normal force (mu = {mu:g}): the slip limit")
-    if zoom:
-        lo, hi = contact_window(f, t)
-        ax.set_xlim(1e6 * lo, 1e6 * hi)
-    ax.set_xlabel("time [us]")
-    ax.set_ylabel("force [N]")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    save(fig, base + "_friction.png", written)
+    finish_time_plot(fig, ax, f, t, zoom, "force [N]", base + "_friction.png", written)
 
 
 def plot_stress_lines(f, base, written):

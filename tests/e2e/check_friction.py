@@ -54,7 +54,7 @@ scene = os.path.join(source, "configs", "scenes", "oblique_friction.yaml")
 MU, VN, VT = 0.1, 0.1, 0.1 * math.tan(math.radians(60.0))
 
 
-def run(name, *extra):
+def run(name, *extra, scene=scene):
     path = os.path.join(out, name + ".h5")
     check.run([ffrsim, "-q", scene, "--sid-path", sids, "-o", path, *extra])
     return path
@@ -166,15 +166,8 @@ with h5py.File(part, "r") as f, h5py.File(rough, "r") as g:
 # 5. Two bodies: the same impact, mirrored, between two spheres (oblique_friction_pair.yaml).
 pair_scene = os.path.join(source, "configs", "scenes", "oblique_friction_pair.yaml")
 
-
-def run_pair(name, *extra):
-    path = os.path.join(out, name + ".h5")
-    check.run([ffrsim, "-q", pair_scene, "--sid-path", sids, "-o", path, *extra])
-    return path
-
-
-pair_rough = run_pair("pair_rough")
-pair_smooth = run_pair("pair_smooth", "--set", "contacts.0.friction_coefficient=0")
+pair_rough = run("pair_rough", scene=pair_scene)
+pair_smooth = run("pair_smooth", "--set", "contacts.0.friction_coefficient=0", scene=pair_scene)
 with h5py.File(pair_rough, "r") as f, h5py.File(pair_smooth, "r") as g:
     check.status_completed(f)
     lo, up = inertial_velocity(f, "lower"), inertial_velocity(f, "upper")
@@ -217,8 +210,7 @@ with h5py.File(pair_rough, "r") as f, h5py.File(pair_smooth, "r") as g:
           "bound 2 % as above)")
 # 6. Backspin: dropped onto the floor spinning, the sphere leaves rolling (backspin_drop.yaml).
 spin_scene = os.path.join(source, "configs", "scenes", "backspin_drop.yaml")
-dropped = os.path.join(out, "backspin.h5")
-check.run([ffrsim, "-q", spin_scene, "--sid-path", sids, "-o", dropped])
+dropped = run("backspin", scene=spin_scene)
 with h5py.File(dropped, "r") as f:
     check.status_completed(f)
     v = inertial_velocity(f, "ball")[-1]
