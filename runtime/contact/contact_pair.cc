@@ -294,11 +294,10 @@ void ContactPair::addPointForces(int c, int i, const PointResult& r, double fact
   C.addRigidPointForce(pc, r.xb, r.f, hC);
   const Eigen::VectorXd fbC = pc.A.transpose() * r.f;
   sums.fbSum += sc.PhiCt.middleCols(i * d, d) * fbC;
-  // Target body: -f at x_T, elastic part through the basis at s.
+  // Target body: -f at x_T, elastic part through the basis at s (sums.R).
   const Eigen::VectorXd minus = -r.f;
   T.addRigidPointForce(pt, r.xt, minus, hT);
   const Eigen::VectorXd fbT = pt.A.transpose() * minus;
-  st.surface.basis(r.element, r.s.data(), 0, sums.R);
   for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
     const int f = st.surface.functions(r.element)[k];
     sums.FT.row(st.local[f]) += sums.R(0, k) * fbT.transpose();
@@ -329,7 +328,8 @@ Eigen::VectorXd ContactPair::elasticVelocities(const Side& side, const BodyModel
 
 void ContactPair::addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
                               const World& wc, const BodyModel& T, const BodyPose& pt,
-                              const World& wt, const double* svC, const double* svT) const {
+                              const World& wt, const Eigen::MatrixXd& R, const double* svC,
+                              const double* svT) const {
   const Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_;
@@ -337,8 +337,6 @@ void ContactPair::addFriction(int c, int i, PointResult& r, const BodyModel& C, 
   // points' velocities.
   Eigen::VectorXd udotT = Eigen::VectorXd::Zero(d);
   if (wt.udot.size() > 0) {
-    Eigen::MatrixXd R;
-    st.surface.basis(r.element, r.s.data(), 0, R);
     for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
       const int f = st.surface.functions(r.element)[k];
       udotT += R(0, k) * wt.udot.segment(st.local[f] * d, d);
@@ -394,7 +392,8 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   const bool friction = options_.friction.active();
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
-    if (r.active && friction) addFriction(c, i, r, C, pc, wc, T, pt, wt, svC, svT);
+    if (r.active) st.surface.basis(r.element, r.s.data(), 0, sums.R);  // at the foot point
+    if (r.active && friction) addFriction(c, i, r, C, pc, wc, T, pt, wt, sums.R, svC, svT);
     if (state) addDiagnostics(r, sc.weight(i), factor, *state);
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
     if (record) {
@@ -402,8 +401,7 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
         pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
       else
         pressure_.set(c, i, xs[i]);
-      if (r.active && friction && sc.weight(i) > 0.0)
-        pressure_.setTraction(c, i, r.friction.force / (factor * sc.weight(i)));
+      if (r.active && friction) pressure_.setTraction(c, i, r.friction.force);
     }
   }
   addElasticForces(st, C, T, hC, hT, sums);
@@ -430,38 +428,21 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
     const Eigen::MatrixXd PhiT = PhiTt.transpose();
     C.pointGradients(poses_[a.c], a.xb, PhiC, a.n, term.bvC, term.bpC);
     T.pointGradients(poses_[1 - a.c], a.xt, PhiT, a.n, term.bvT, term.bpT);
-    if (options_.friction.active()) addFrictionTerms(a, PhiC, PhiT, term);
+    // Friction with the relative velocity G_C^T s_vC - G_T^T s_vT (coulomb_friction.h).
+    if (options_.friction.active()) {
+      appendFrictionTerms(
+          a.friction, term,
+          [&](const Eigen::VectorXd& e, StiffnessTerm& t) {
+            Eigen::VectorXd unused;
+            C.pointGradients(poses_[a.c], a.xb, PhiC, e, t.bvC, unused);
+            T.pointGradients(poses_[1 - a.c], a.xt, PhiT, e, t.bvT, unused);
+          },
+          terms_);
+    }
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;
   return terms_;
-}
-
-// Friction's terms (runtime/contact/coulomb_friction.h) with the relative velocity
-// G_C^T s_vC - G_T^T s_vT: the damping along e1 and e2, d h / d s_v = -c [G_C e; -G_T e]
-// [G_C e; -G_T e]^T, and the normal force's share, d h / d s_p = -k [G_C l; -G_T l]
-// [bpC; -bpT]^T with l = d f_t / d f_n (k = c_p w_i times the role factor).
-void ContactPair::addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& PhiC,
-                                   const Eigen::MatrixXd& PhiT, const StiffnessTerm& normal) const {
-  const PointFriction& fr = a.friction;
-  const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e,
-                       bool velocities) {
-    if (velocities && negligibleDamping(fr, k)) return;
-    StiffnessTerm t;
-    t.body_c = normal.body_c;
-    t.body_t = normal.body_t;
-    t.kind = kind;
-    t.k = k;
-    Eigen::VectorXd unused;  // G_C e and G_T e
-    bodies_[a.c]->pointGradients(poses_[a.c], a.xb, PhiC, e, t.bvC, unused);
-    bodies_[1 - a.c]->pointGradients(poses_[1 - a.c], a.xt, PhiT, e, t.bvT, unused);
-    t.bpC = velocities ? t.bvC : normal.bpC;
-    t.bpT = velocities ? t.bvT : normal.bpT;
-    terms_.push_back(std::move(t));
-  };
-  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, fr.e1, true);
-  if (fr.e2.size() > 0) add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, fr.e2, true);
-  add(StiffnessTerm::Kind::kFrictionLoad, a.k, fr.load, false);
 }
 
 Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& pa,

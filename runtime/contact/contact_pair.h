@@ -178,18 +178,20 @@ class ContactPair : public SurfaceContact {
                             const Eigen::VectorXd& basis) const;
   // Phase 3, friction at active point i of side c (runtime/contact/coulomb_friction.h): the
   // relative velocity of the collocation point and the foot point (BodyModel::pointVelocity
-  // with the sides' World::udot), and the tangential force added to r.f (on C; -r.f on T).
-  // The force's normal part is the penalty's f_n = |r.f| (role factor included).
+  // with the sides' World::udot; R: the target surface's basis at the foot point), and the
+  // tangential force added to r.f (on C; -r.f on T). The force's normal part is the
+  // penalty's f_n = |r.f| (role factor included).
   void addFriction(int c, int i, PointResult& r, const BodyModel& C, const BodyPose& pc,
                    const World& wc, const BodyModel& T, const BodyPose& pt, const World& wt,
-                   const double* svC, const double* svT) const;
+                   const Eigen::MatrixXd& R, const double* svC, const double* svT) const;
   // Phase 3, one point's diagnostics: a failed search, its depth beyond the edge and, if
   // active, its force, penetration and penalty energy 1/2 c_p g_n^2 w_i (times `factor`).
   void addDiagnostics(const PointResult& r, double weight, double factor,
                       ContactState& state) const;
   // Phase 3, active point i of side c (Eq. 18): the rigid parts of f on C and of -f on T
   // into hC and hT, C's elastic part Phi_i^T A_C^T f into sums.fbSum, T's body-frame force
-  // spread over its surface control points by the basis at s (sums.FT); recorded in active_.
+  // spread over its surface control points by the basis at s (sums.R, formed by the caller;
+  // into sums.FT); recorded in active_.
   void addPointForces(int c, int i, const PointResult& r, double factor, const BodyModel& C,
                       const BodyPose& pc, const BodyModel& T, const BodyPose& pt, double* hC,
                       double* hT, ForceSums& sums);
@@ -206,11 +208,6 @@ class ContactPair : public SurfaceContact {
     Eigen::VectorXd basis, xb, xt, n;
     PointFriction friction;  // friction: its law's values at the point
   };
-  // Friction's terms of active point a beside its normal term (as ObstacleContact's, with
-  // the target's gradients): damping along e1 and e2 on both bodies' velocities, and the
-  // normal force's share. PhiC, PhiT: the modes at the point and the foot point (d x nq).
-  void addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& PhiC,
-                        const Eigen::MatrixXd& PhiT, const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
   BodyPose poses_[2];

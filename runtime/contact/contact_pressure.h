@@ -71,9 +71,12 @@ struct ContactPressure {
     normal.row(row).head(n.size()) = n.transpose();
     traction.row(row).setZero();
   }
-  // The tangential traction t (Pa, d entries) of point i of role r, set after its pressure.
-  void setTraction(int r, int i, const Eigen::Ref<const Eigen::VectorXd>& t) {
-    traction.row(first_[r] + i).head(t.size()) = t.transpose();
+  // Point i of role r's tangential force f_t (N, d entries; role factor included): its
+  // traction f_t / (factor w_i), set after its pressure (0 on a point of weight 0, the axis).
+  void setTraction(int r, int i, const Eigen::Ref<const Eigen::VectorXd>& force) {
+    const int row = first_[r] + i;
+    if (weight(row) > 0.0)
+      traction.row(row).head(force.size()) = force.transpose() / (factor * weight(row));
   }
 
  private:

@@ -43,4 +43,25 @@ PointFriction coulombFriction(const FrictionLaw& law, double normal_force, const
   return p;
 }
 
+void appendFrictionTerms(
+    const PointFriction& f, const StiffnessTerm& normal,
+    const std::function<void(const Eigen::VectorXd& e, StiffnessTerm& t)>& gradients,
+    std::vector<StiffnessTerm>& terms) {
+  const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e) {
+    StiffnessTerm t;
+    t.body_c = normal.body_c;
+    t.body_t = normal.body_t;
+    t.kind = kind;
+    t.k = k;
+    gradients(e, t);
+    t.bpC = t.onVelocities() ? t.bvC : normal.bpC;
+    t.bpT = t.onVelocities() ? t.bvT : normal.bpT;
+    terms.push_back(std::move(t));
+  };
+  if (!negligibleDamping(f, f.c1)) add(StiffnessTerm::Kind::kFrictionDamping, f.c1, f.e1);
+  if (f.e2.size() > 0 && !negligibleDamping(f, f.c2))
+    add(StiffnessTerm::Kind::kFrictionDamping, f.c2, f.e2);
+  add(StiffnessTerm::Kind::kFrictionLoad, normal.k, f.load);
+}
+
 }  // namespace ffriga

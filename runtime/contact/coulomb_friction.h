@@ -15,7 +15,12 @@
 // (the change of n neglected), and d f_t / d f_n = -mu v_t / s.
 #pragma once
 
+#include <functional>
+#include <vector>
+
 #include <Eigen/Dense>
+
+#include "runtime/forces/force_element.h"
 
 namespace ffriga {
 
@@ -43,6 +48,17 @@ constexpr double kNegligibleDamping = 1e-8;
 inline bool negligibleDamping(const PointFriction& f, double c) {
   return c < kNegligibleDamping * (f.c1 > f.c2 ? f.c1 : f.c2);
 }
+
+// The Newton-matrix terms of a point's friction f beside its normal term `normal`
+// (runtime/forces/force_element.h): the damping c1, c2 along e1, e2 on the velocities
+// (kFrictionDamping, bp = bv; left out where negligibleDamping), and the normal force's share
+// (kFrictionLoad with the normal term's k and bp) along d f_t / d f_n. gradients(e, t) sets
+// t.bvC, and t.bvT where the target is a body, to the points' velocity gradients G e along
+// the world direction e. Appended to terms.
+void appendFrictionTerms(
+    const PointFriction& f, const StiffnessTerm& normal,
+    const std::function<void(const Eigen::VectorXd& e, StiffnessTerm& t)>& gradients,
+    std::vector<StiffnessTerm>& terms);
 
 // The friction at a point with normal force f_n >= 0 (N), relative velocity v and unit
 // normal n (both d = 2 or 3 components).

@@ -105,7 +105,7 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
     active_.push_back({i, k, xb, n, {}});
     if (friction) {
       addFriction(A, pa, sv, udot, -k * p.gap, f, s, active_.back());
-      if (state) pressure_.setTraction(0, i, active_.back().friction.force / side_.weight(i));
+      if (state) pressure_.setTraction(0, i, active_.back().friction.force);
     }
     A.addRigidPointForce(pa, xb, f, hA);
     if (A.nq() > 0) fbSum += side_.PhiCt.middleCols(i * dim_, dim_) * (pa.A.transpose() * f);
@@ -124,29 +124,6 @@ void ObstacleContact::evaluate(const BodyModel& A, const BodyPose& pa, double* h
   }
 }
 
-// Friction's terms (runtime/contact/coulomb_friction.h), with the point's velocity G^T s_v:
-// the damping along e1 and e2, d h / d s_v = -c (G e)(G e)^T, and the normal force's share,
-// h_t = G f_n load with f_n = -k g: d h / d s_p = -k (G load) bp_n^T.
-void ObstacleContact::addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& Phi,
-                                       const StiffnessTerm& normal) const {
-  const PointFriction& fr = a.friction;
-  const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e) {
-    if (kind == StiffnessTerm::Kind::kFrictionDamping && negligibleDamping(fr, k)) return;
-    StiffnessTerm t;
-    t.body_c = bodyA();
-    t.body_t = -1;
-    t.kind = kind;
-    t.k = k;
-    Eigen::VectorXd unused;
-    body_->pointGradients(pose_, a.xb, Phi, e, t.bvC, unused);  // G e
-    t.bpC = t.onVelocities() ? t.bvC : normal.bpC;
-    terms_.push_back(std::move(t));
-  };
-  add(StiffnessTerm::Kind::kFrictionDamping, fr.c1, fr.e1);
-  if (fr.e2.size() > 0) add(StiffnessTerm::Kind::kFrictionDamping, fr.c2, fr.e2);
-  add(StiffnessTerm::Kind::kFrictionLoad, a.k, fr.load);
-}
-
 const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
   if (terms_formed_) return terms_;
   terms_.clear();
@@ -158,7 +135,15 @@ const std::vector<StiffnessTerm>& ObstacleContact::stiffnessTerms() const {
     term.k = a.k;
     const Eigen::MatrixXd Phi = side_.PhiCt.middleCols(a.i * dim_, dim_).transpose();
     body_->pointGradients(pose_, a.xb, Phi, a.n, term.bvC, term.bpC);
-    if (options_.friction.active()) addFrictionTerms(a, Phi, term);
+    if (options_.friction.active()) {  // G e of the body's point (coulomb_friction.h)
+      appendFrictionTerms(
+          a.friction, term,
+          [&](const Eigen::VectorXd& e, StiffnessTerm& t) {
+            Eigen::VectorXd unused;
+            body_->pointGradients(pose_, a.xb, Phi, e, t.bvC, unused);
+          },
+          terms_);
+    }
     terms_.push_back(std::move(term));
   }
   terms_formed_ = true;

@@ -78,10 +78,6 @@ class ObstacleContact : public SurfaceContact {
   void addFriction(const BodyModel& A, const BodyPose& pa, const double* sv,
                    const Eigen::VectorXd& udot, double fn, Eigen::VectorXd& f, ContactState& s,
                    ActivePoint& point) const;
-  // The point's friction terms for the Newton matrix (beside its normal term `normal`; Phi:
-  // its modes, d x nq): the velocity gradients bv along the law's directions.
-  void addFrictionTerms(const ActivePoint& a, const Eigen::MatrixXd& Phi,
-                        const StiffnessTerm& normal) const;
   std::vector<ActivePoint> active_;
   const BodyModel* body_ = nullptr;
   BodyPose pose_;
