@@ -12,10 +12,12 @@ the independent references of benchmarks/oblique_reference.py:
     negative below Psi_1 ~ 4 chi where rigid theory has the point rolling (Psi_2 = 0).
 
 The table gives ffrsim's Psi_2 next to both, the tangential velocity and spin against
-impulse theory, steps and wall time; the PNG draws Psi_2 over Psi_1.
+impulse theory, steps and wall time; the PNG draws Psi_2 over Psi_1. --law anchored runs
+the scene with friction_law: anchored (stick anchors: the compliant regime), else the
+regularised law; --plot-only draws one or two JSON files (each its law's points).
 
-usage: oblique_impacts.py BUILD_DIR OUT_DIR [--json FILE] [--png FILE] [--quick]
-       oblique_impacts.py --plot-only JSON PNG
+usage: oblique_impacts.py BUILD_DIR OUT_DIR [--law anchored] [--json FILE] [--png FILE] [--quick]
+       oblique_impacts.py --plot-only JSON [JSON2] PNG
 """
 import json
 import math
@@ -38,13 +40,14 @@ MU, VN = 0.1, 0.1
 SCENE = os.path.join(REPO, "configs", "scenes", "oblique_friction.yaml")
 
 
-def run(build, out, theta):
+def run(build, out, theta, law):
     vt = VN * math.tan(math.radians(theta))
-    path = os.path.join(out, f"theta{theta:g}.h5")
+    path = os.path.join(out, f"theta{theta:g}_{law}.h5")
     t0 = time.perf_counter()
     subprocess.run([os.path.join(build, "bin", "ffrsim"), "-q", SCENE, "--sid-path",
                     os.path.join(build, "tests", "e2e"), "-o", path,
-                    "--set", f"bodies.0.velocity=[{vt!r}, 0, {-VN!r}]"], check=True)
+                    "--set", f"bodies.0.velocity=[{vt!r}, 0, {-VN!r}]",
+                    "--set", f"contacts.0.friction_law={law}"], check=True)
     wall = time.perf_counter() - t0
     with h5py.File(path, "r") as f:
         v = inertial_velocity(f, "ball")[-1]
@@ -56,13 +59,16 @@ def run(build, out, theta):
 
 
 def main():
-    if "--plot-only" in sys.argv:  # oblique_impacts.py --plot-only JSON PNG
-        k = sys.argv.index("--plot-only")
-        with open(sys.argv[k + 1]) as f:
-            d = json.load(f)
-        plot(d["rows"], d["chi"], d["nu"], sys.argv[k + 2])
+    if "--plot-only" in sys.argv:  # oblique_impacts.py --plot-only JSON [JSON2] PNG
+        files = sys.argv[sys.argv.index("--plot-only") + 1:]
+        sets = []
+        for name in files[:-1]:
+            with open(name) as f:
+                sets.append(json.load(f))
+        plot(sets, files[-1])
         return
-    args = [a for a in sys.argv[1:] if not a.startswith("--")]
+    law = sys.argv[sys.argv.index("--law") + 1] if "--law" in sys.argv else "regularised"
+    args = [a for a in sys.argv[1:] if not a.startswith("--") and a != law]
     build, out = args[0], args[1]
     os.makedirs(out, exist_ok=True)
     with h5py.File(os.path.join(build, "tests", "e2e", "sphere3d_coarse.sid.h5"), "r") as s:
@@ -80,7 +86,7 @@ def main():
           f"{'w/imp':>9} {'steps':>6} {'wall s':>7}")
     rows = []
     for th in thetas:
-        r = run(build, out, th)
+        r = run(build, out, th, law)
         vx, vz = r["v_after"][0], r["v_after"][2]
         e = vz / VN
         wy = r["w_after"][1]
@@ -96,25 +102,28 @@ def main():
               f"{100 * r['w_vs_impulse']:+8.3f}% {r['steps']:6d} {r['wall_s']:7.2f}", flush=True)
     if "--json" in sys.argv:
         with open(sys.argv[sys.argv.index("--json") + 1], "w") as f:
-            json.dump(dict(chi=chi, nu=nu, mu=MU, v_n=VN, rows=rows), f, indent=1)
+            json.dump(dict(chi=chi, nu=nu, mu=MU, v_n=VN, law=law, rows=rows), f, indent=1)
     if "--png" in sys.argv:
-        plot(rows, chi, nu, sys.argv[sys.argv.index("--png") + 1])
+        plot([dict(chi=chi, nu=nu, law=law, rows=rows)], sys.argv[sys.argv.index("--png") + 1])
 
 
-def plot(rows, chi, nu, png):
-    """Psi_2 over Psi_1 up to 12 chi (beyond, gross sliding follows the line Psi_1 - 4 chi)."""
+def plot(sets, png):
+    """Psi_2 over Psi_1 up to 12 chi (beyond, gross sliding follows the line Psi_1 - 4 chi),
+    one set of points per law."""
+    chi, nu = sets[0]["chi"], sets[0]["nu"]
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.5, 4.2))
     top = 12.0 * chi
-    shown = [r for r in rows if r["psi1"] <= top]
     xs = np.linspace(0.05, top, 48)
     ax.plot(xs, [psi2(x, nu, 0.4, MU, VN)[0] for x in xs], "k-", lw=1,
             label="Maw-Barber-Fawcett (MDR)")
     ax.plot(xs, np.maximum(xs - 4 * chi, 0.0), "k--", lw=0.8, label="rigid-body theory")
-    ax.plot([r["psi1"] for r in shown], [r["psi2"] for r in shown], "o",
-            label="ffrsim (regularised Coulomb)")
+    for d, marker in zip(sets, "os"):
+        shown = [r for r in d["rows"] if r["psi1"] <= top]
+        ax.plot([r["psi1"] for r in shown], [r["psi2"] for r in shown], marker, mfc="none",
+                label=f"ffrsim ({d.get('law', 'regularised')} friction)")
     ax.axhline(0, color="grey", lw=0.5)
     ax.set_xlim(0, top)
     ax.set_xlabel("local angle of incidence Psi_1")

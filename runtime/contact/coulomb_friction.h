@@ -26,7 +26,12 @@ namespace ffriga {
 
 struct FrictionLaw {
   double coefficient = 0.0;    // mu >= 0 (0: frictionless)
-  double slip_velocity = 0.0;  // eps, m/s (> 0 when mu > 0)
+  double slip_velocity = 0.0;  // eps, m/s (> 0 when mu > 0; the regularised law's)
+  // The stick anchors' law (below) instead of the velocity-regularised one: stick is
+  // elastic with the tangential stiffness c_t = c_p per unit area, slip relaxes the anchor
+  // within relaxation_time (s).
+  bool anchored = false;
+  double relaxation_time = 0.0;
   bool active() const { return coefficient > 0.0; }
 };
 
@@ -57,6 +62,58 @@ inline bool negligibleDamping(const PointFriction& f, double c) {
 // the world direction e. Appended to terms.
 void appendFrictionTerms(
     const PointFriction& f, const StiffnessTerm& normal,
+    const std::function<void(const Eigen::VectorXd& e, StiffnessTerm& t)>& gradients,
+    std::vector<StiffnessTerm>& terms);
+
+// Friction with a stick anchor (schemas/contact_friction.md, "Stick anchors"): a collocation
+// point in contact carries an anchor z on the target (world coordinates, part of the
+// integrated state); with the elastic slip r = x - z, its tangential part d = P_t r, the
+// tangential stiffness k_t = c_t w_i (N/m) and the slip limit d_lim = mu f_n / k_t,
+//   stick (|d| <= d_lim):  f_t = -k_t d,              dz/dt = 0,
+//   slip  (|d| >  d_lim):  f_t = -mu f_n d / |d|,     dz/dt = (|d| - d_lim) / eta  d / |d|,
+// so |f_t| <= mu f_n exactly, a sticking point does not move (no creep), and a slipping
+// point's anchor trails it by eta |v_slip| beyond the limit: Perzyna's viscoplastic return
+// to the Coulomb cone with relaxation time eta. The power taken out is
+// P = -f_t . dz/dt = mu f_n (|d| - d_lim) / eta >= 0, the energy held in the tangential
+// spring 1/2 k_t min(|d|, d_lim)^2.
+// Linearisation (d, e1 = d / |d|, e2 = n x e1 in 3D, beta = d_lim / |d|):
+//   stick: d f_t / d r = -k_t (e1 e1^T + e2 e2^T),
+//   slip:  d f_t / d r = -mu f_n / |d| e2 e2^T,   d f_t / d f_n = -mu e1,
+//          d zdot / d r = (e1 e1^T + (1 - beta) e2 e2^T) / eta,
+//          d zdot / d f_n = -mu / (k_t eta) e1.
+struct AnchoredFriction {
+  Eigen::VectorXd force;  // f_t (d components, N)
+  Eigen::VectorXd rate;   // dz/dt (d components, m/s)
+  double power = 0.0;     // W >= 0
+  double energy = 0.0;    // J, the tangential spring's
+  bool sticking = true;
+  // Slipping with the anchor on the slip limit, d = d_lim e1 with e1 held (the quasi-static
+  // projection's iteration: f_t = -mu f_n e1 depends on the normal force only).
+  bool following = false;
+  Eigen::VectorXd e1, e2;  // unit tangents (e2 empty in 2D)
+  double d = 0.0;          // |d| (m)
+};
+
+// branch: kDecide by |d| against d_lim; kStick holds the stick branch (the spring, whatever
+// |d|); kFollow slips along the given e1 with the anchor on the slip limit (`following`).
+// The quasi-static projection's Newton iteration holds each point's branch: with the law's
+// switch inside it, a point whose anchor trails it by eta |v_slip| flips to stick under a
+// correction of a fraction of a nanometre and back, and the iteration cycles.
+enum class FrictionBranch { kDecide, kStick, kFollow };
+AnchoredFriction anchoredFriction(const FrictionLaw& law, double normal_force, double k_t,
+                                  const Eigen::VectorXd& r, const Eigen::VectorXd& n,
+                                  FrictionBranch branch = FrictionBranch::kDecide,
+                                  const Eigen::VectorXd* e1 = nullptr);
+
+// The Newton-matrix terms of an anchored point beside its normal term `normal`: stick: two
+// (3D; 2D one) tangential stiffness terms (kNormal kind, symmetric in the bodies' positions,
+// with the anchor's columns -e); slip: the stiffness along e2, the anchor's relaxation along
+// e1 and the normal force's share (kFrictionLoad) with the anchor's rows. anchor: the index
+// of the point's first anchor entry among the pair's anchors; k_t as above; gradients as for
+// appendFrictionTerms (here also t.bpC: the position gradients G_p e).
+void appendAnchoredTerms(
+    const FrictionLaw& law, const AnchoredFriction& f, double normal_force, double k_t, int anchor,
+    const StiffnessTerm& normal,
     const std::function<void(const Eigen::VectorXd& e, StiffnessTerm& t)>& gradients,
     std::vector<StiffnessTerm>& terms);
 

@@ -45,9 +45,15 @@ class ObstacleContact : public SurfaceContact {
   Penetration deepestPenetration(const ForceContext& at) const override;
   const std::vector<StiffnessTerm>& stiffnessTerms() const override;
   // Adds the generalised contact forces on A to hA (layout of A's velocities) and fills
-  // `state` if given; sv: A's velocities (needed with friction only).
+  // `state` if given; sv: A's velocities (needed with friction only); z: the anchors (needed
+  // with anchored friction only).
   void evaluate(const BodyModel& A, const BodyPose& pa, double* hA, ContactState* state,
-                const double* sv = nullptr);
+                const double* sv = nullptr, const double* z = nullptr);
+  int numAnchors() const override;
+  void initialAnchors(const ForceContext& at, double* z) const override;
+  void followAnchors(const ForceContext& at, double* z) const override;
+  bool releaseExceeded() override;
+  void settleAnchors(const ForceContext& at, double* z) const override;
   // The world position of the contact surface's centre and its outward normal there
   // (undeformed surface at `pa`): for the scene's check that the surface faces the obstacle.
   void surfaceCentre(const BodyPose& pa, Eigen::Vector3d& x, Eigen::Vector3d& n) const;
@@ -69,8 +75,20 @@ class ObstacleContact : public SurfaceContact {
     int i = 0;
     double k = 0.0;
     Eigen::VectorXd xb, n;
-    PointFriction friction;  // with friction: the law's values at the point
+    PointFriction friction;     // with friction: the law's values at the point
+    AnchoredFriction anchored;  // with anchored friction: its values
+    double fn = 0.0;            // N, the normal force
   };
+  bool anchored() const { return options_.friction.active() && options_.friction.anchored; }
+  Eigen::VectorXd held_e1_;  // workspace: a held slip direction
+  // Anchored friction at active point `point` with normal force fn, anchor z (dim_ entries)
+  // and world position x: adds the tangential force to f, its figures to s, the anchor's
+  // rate to anchor_rates_.
+  void addAnchoredFriction(const Eigen::Vector3d& x, const double* z, double fn, Eigen::VectorXd& f,
+                           ContactState& s, ActivePoint& point);
+  // Puts the anchors on their points (z: the pair's anchors), all or (outOnly) those of the
+  // points out of contact.
+  void placeAnchors(const ForceContext& at, double* z, bool outOnly) const;
   // The point's friction at its normal force fn (N), with the point's velocity
   // (BodyModel::pointVelocity; udot: the surface control points' elastic velocities,
   // displacements() of qdot): adds the tangential force to f, its figures to s, and keeps

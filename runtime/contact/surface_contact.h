@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -109,7 +110,48 @@ class SurfaceContact : public ForceElement {
   // pair's force peak, runtime/output/peak_contact_pressure.h).
   const ContactPressure& pressureField() const { return pressure_; }
 
+  // Stick anchors (friction with `anchored`, runtime/contact/coulomb_friction.h
+  // AnchoredFriction): the number of state entries the pair adds (d per collocation point;
+  // 0 without); their values at the context's state with every point's anchor on the point
+  // (the initial state); the same for the points out of contact only (the projection after
+  // every step: an anchor out of contact rests, dz/dt = 0, and is put back on its point
+  // between steps, so that a point enters contact with its anchor on it); and from the last
+  // evaluation the anchors' rates.
+  virtual int numAnchors() const { return 0; }
+  virtual void initialAnchors(const ForceContext& at, double* z) const {
+    (void)at;
+    (void)z;
+  }
+  virtual void followAnchors(const ForceContext& at, double* z) const {
+    (void)at;
+    (void)z;
+  }
+  const Eigen::VectorXd& anchorRates() const { return anchor_rates_; }
+  // The quasi-static projection's Newton iteration with anchored friction (FrictionBranch):
+  // while held, each point keeps the branch of its first evaluation after
+  // holdFrictionBranches(true), a slipping one with its anchor on the slip limit along its
+  // slip direction of then. releaseExceeded() turns the sticking points whose spring now
+  // exceeds mu f_n (in the last evaluation) to slip, true if any (the projection then
+  // iterates again); settleAnchors puts the slipping points' anchors on their slip limit
+  // along the held direction at the context's state (z: the pair's anchors), where the
+  // law's two branches agree and give the force the iteration held.
+  void holdFrictionBranches(bool hold) {
+    hold_branches_ = hold;
+    branches_.clear();
+  }
+  virtual bool releaseExceeded() { return false; }
+  virtual void settleAnchors(const ForceContext& at, double* z) const {
+    (void)at;
+    (void)z;
+  }
+
  protected:
+  Eigen::VectorXd anchor_rates_;
+  bool hold_branches_ = false;
+  // Per collocation point while held: 0 unset, 1 stick, 2 slip (following), 3 stick
+  // exceeded in the last evaluation; the slip directions (d per point).
+  std::vector<char> branches_;
+  Eigen::VectorXd held_directions_;
   ContactOptions options_;
   std::string obstacle_name_;
   double size_ = 0.0;

@@ -42,6 +42,12 @@ struct StiffnessTerm {
   double k = 0.0;              // N/m (kFrictionDamping: N s/m)
   Eigen::VectorXd bvC, bpC, bvT, bpT;
   Kind kind = Kind::kNormal;
+  // Friction with stick anchors (runtime/contact/coulomb_friction.h AnchoredFriction): the
+  // term's share of the pair's anchors. anchor >= 0: the index of the point's first anchor
+  // entry among the pair's; the term's column of the Jacobian is then
+  // U = [-k M^-1 [bvC; -bvT]; aU on the anchor's rows], V = [[bpC; -bpT]; aV on its columns].
+  int anchor = -1;
+  Eigen::VectorXd aU, aV;
   bool onVelocities() const { return kind == Kind::kFrictionDamping; }
 };
 
@@ -53,6 +59,12 @@ class ForceContext {
   virtual const double* positions(int b) const = 0;   // s_p of body b
   virtual const double* velocities(int b) const = 0;  // s_v of body b
   virtual const BodyPose& pose(int b) const = 0;      // body b's pose at s_p
+  // The stick anchors of contact pair `slot` (runtime/contact/coulomb_friction.h), world
+  // coordinates; nullptr where the pair has none.
+  virtual const double* anchors(int slot) const {
+    (void)slot;
+    return nullptr;
+  }
 };
 
 // Where the elements of each kind leave their diagnostics, at their slot (the index among

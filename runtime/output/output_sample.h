@@ -41,6 +41,7 @@ struct ConnectionLayout {
   double penalty_factor = 0.0;  // contact pairs: c_p, N/m^3
   // Contact pairs with friction (runtime/contact/coulomb_friction.h): mu > 0 and eps (m/s).
   double friction_coefficient = 0.0, slip_velocity = 0.0;
+  double stick_relaxation_time = 0.0;  // s; > 0: friction_law anchored (stick anchors)
   // A pair with a rigid obstacle (end_b): its shape ("plane", "sphere"; empty for two
   // bodies), point (plane: p, sphere: centre; m, inertial), normal (plane) and radius (m;
   // plane: 0 where infinite).

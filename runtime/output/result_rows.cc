@@ -71,7 +71,12 @@ void writeContactDescription(const h5::Context& c, hid_t g, const ConnectionLayo
   h5::writeAttribute(c, g, "penalty_factor_unit", std::string("N/m^3"));
   if (pair.friction_coefficient > 0.0) {
     h5::writeAttribute(c, g, "friction_coefficient", pair.friction_coefficient);
-    h5::writeAttribute(c, g, "slip_velocity_m_s", pair.slip_velocity);
+    h5::writeAttribute(c, g, "friction_law",
+                       std::string(pair.stick_relaxation_time > 0.0 ? "anchored" : "regularised"));
+    if (pair.stick_relaxation_time > 0.0)
+      h5::writeAttribute(c, g, "stick_relaxation_time_s", pair.stick_relaxation_time);
+    else
+      h5::writeAttribute(c, g, "slip_velocity_m_s", pair.slip_velocity);
   }
   if (!pair.obstacle_shape.empty()) {  // body_b is a rigid obstacle fixed in space
     h5::writeAttribute(c, g, "obstacle_shape", pair.obstacle_shape);

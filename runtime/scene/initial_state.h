@@ -22,10 +22,11 @@ struct AbsoluteTolerances {
 };
 
 // y0 in the system's layout (velocities in body components, Eq. 1) and atol per entry;
-// `axisymmetric`: the scene's bodies are axisymmetric (state: Y and V_y).
+// `axisymmetric`: the scene's bodies are axisymmetric (state: Y and V_y); rtol: the
+// integrator's relative tolerance (the stick anchors' atol).
 void assembleInitialState(const MultibodySystem& sys, const std::vector<InitialPose>& poses,
-                          bool axisymmetric, const AbsoluteTolerances& tol, Eigen::VectorXd& y0,
-                          Eigen::VectorXd& atol);
+                          bool axisymmetric, const AbsoluteTolerances& tol, double rtol,
+                          Eigen::VectorXd& y0, Eigen::VectorXd& atol);
 
 // Bodies must not start inside each other: a penetration beyond the pair's tolerance
 // (ContactPair::penetrationTolerance) is bad input (contacts[c]), with the depth in the

@@ -108,6 +108,8 @@ OutputLayout outputLayout(const MultibodySystem& system) {
     l.role_factor = pair.pressureField().factor;
     l.friction_coefficient = pair.options().friction.coefficient;
     l.slip_velocity = pair.options().friction.slip_velocity;
+    if (pair.options().friction.anchored)
+      l.stick_relaxation_time = pair.options().friction.relaxation_time;
     if (const auto* o = dynamic_cast<const ObstacleContact*>(&pair)) {
       l.obstacle_shape = o->obstacle().shapeName();
       l.obstacle_point = o->obstacle().point();

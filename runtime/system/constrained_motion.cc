@@ -263,7 +263,13 @@ bool MultibodySystem::projectState(double* y) {
       if (!closeConstraints(y, false)) return false;
     }
   }
-  return projectQuasiStatic(y);
+  if (!projectQuasiStatic(y)) return false;
+  if (hasAnchors()) {
+    const SystemState at(*this, y);
+    for (int c = 0; c < numContacts(); ++c)
+      if (contacts_[c]->numAnchors() > 0) contacts_[c]->followAnchors(at, y + anchor_offset_[c]);
+  }
+  return true;
 }
 
 bool MultibodySystem::projectStateRigidly(double* y) {

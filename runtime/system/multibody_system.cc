@@ -20,6 +20,9 @@ void MultibodySystem::addForceElement(std::unique_ptr<ForceElement> element) {
   if (auto* pair = dynamic_cast<SurfaceContact*>(element.get())) {
     pair->setSlot(numContacts());
     contacts_.push_back(pair);
+    forces_.push_back(std::move(element));
+    layout();  // its anchors
+    return;
   } else if (auto* line = dynamic_cast<LineForce*>(element.get())) {
     line->setSlot(numLineForces());
     line_forces_.push_back(line);
@@ -53,6 +56,12 @@ void MultibodySystem::layout() {
     vel_offset_.push_back(n);
     n += b->numVelocities();
   }
+  num_velocities_ = n - (bodies_.empty() ? 0 : vel_offset_[0]);
+  anchor_offset_.clear();
+  for (const SurfaceContact* c : contacts_) {
+    anchor_offset_.push_back(n);
+    n += c->numAnchors();
+  }
   size_ = n;
   h_.resize(bodies_.size());
 }
@@ -67,6 +76,19 @@ void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd
   out.contacts = states;
   for (const auto& e : forces_)
     if (e->hasStiffnessTerms()) e->addForces(at, h, out);
+}
+
+void MultibodySystem::placeAnchors(double* y) const {
+  const SystemState at(*this, y);
+  for (int c = 0; c < numContacts(); ++c)
+    if (contacts_[c]->numAnchors() > 0) contacts_[c]->initialAnchors(at, y + anchor_offset_[c]);
+}
+
+void MultibodySystem::anchorRates(double* ydot) const {
+  for (int c = 0; c < numContacts(); ++c)
+    if (contacts_[c]->numAnchors() > 0)
+      Eigen::Map<Eigen::VectorXd>(ydot + anchor_offset_[c], contacts_[c]->numAnchors()) =
+          contacts_[c]->anchorRates();
 }
 
 void MultibodySystem::rhs(double, const double* y, double* ydot) {
@@ -85,6 +107,7 @@ void MultibodySystem::constrainedAccelerations(const double* y, double* ydot,
                                                std::vector<ContactState>* states,
                                                std::vector<LineForceState>* lineStates) {
   contactForces(y, h_, states);
+  anchorRates(ydot);
   addLineForces(y, h_, lineStates);
   for (int b = 0; b < numBodies(); ++b) {
     const BodyModel& body = *bodies_[b];
@@ -166,10 +189,38 @@ bool MultibodySystem::jacobian(double, const double* y, const double*, const dou
       J.middleRows(vel_offset_[b], dh[b].rows()) += dh[b];
     }
   }
+  denseAnchorTerms(y, J);
   for (int b = 0; b < numBodies(); ++b)
     bodies_[b]->quasiStatic().applyToRows(pos_offset_[b] + bodies_[b]->numRigidPositions(),
                                           vel_offset_[b] + bodies_[b]->numRigidVelocities(), J);
   return true;
+}
+
+void MultibodySystem::denseAnchorTerms(const double* y, Eigen::Map<Eigen::MatrixXd>& J) {
+  for (int c = 0; c < numContacts(); ++c) {
+    const SurfaceContact& pair = *contacts_[c];
+    if (pair.numAnchors() == 0) continue;
+    const int a0 = anchor_offset_[c];
+    for (const StiffnessTerm& t : pair.stiffnessTerms()) {
+      if (t.anchor < 0) continue;
+      const int d = static_cast<int>(t.aV.size()), za = a0 + t.anchor;
+      // The bodies' rows on the anchor's columns: -k M^-1 [bvC; -bvT] aV^T.
+      const int bodiesOf[2] = {t.body_c, t.body_t};
+      const Eigen::VectorXd* bv[2] = {&t.bvC, &t.bvT};
+      const Eigen::VectorXd* bp[2] = {&t.bpC, &t.bpT};
+      for (int X = 0; X < 2; ++X) {
+        const int b = bodiesOf[X];
+        if (b < 0) continue;
+        Eigen::MatrixXd col = (X == 0 ? -t.k : t.k) * (*bv[X]);
+        bodies_[b]->solveMass(y + pos_offset_[b], col);
+        J.block(vel_offset_[b], za, col.rows(), d) += col * t.aV.transpose();
+        // The anchor's rows on the bodies' positions: aU [bpC; -bpT]^T.
+        J.block(za, pos_offset_[b], d, bp[X]->size()) +=
+            (X == 0 ? 1.0 : -1.0) * t.aU * bp[X]->transpose();
+      }
+      J.block(za, za, d, d) += t.aU * t.aV.transpose();
+    }
+  }
 }
 
 namespace {
@@ -267,6 +318,11 @@ void MultibodySystem::contactColumns(const std::vector<Eigen::MatrixXd>& C,
       const std::vector<int>& of = t.onVelocities() ? vel_offset_ : pos_offset_;
       J.U.col(col).segment(vel_offset_[bc], t.bvC.size()) += -t.k * solveMass(bc, t.bvC);
       J.V.col(col).segment(of[bc], t.bpC.size()) += t.bpC;
+      if (t.anchor >= 0) {  // the pair's stick anchors (coulomb_friction.h)
+        const int za = anchor_offset_[element->slot()] + t.anchor;
+        J.U.col(col).segment(za, t.aU.size()) += t.aU;
+        J.V.col(col).segment(za, t.aV.size()) += t.aV;
+      }
       if (bt >= 0) {  // else a target fixed in space
         J.U.col(col).segment(vel_offset_[bt], t.bvT.size()) += t.k * solveMass(bt, t.bvT);
         J.V.col(col).segment(of[bt], t.bpT.size()) -= t.bpT;

@@ -108,10 +108,21 @@ class MultibodySystem : public OdeSystem {
   int size() const override { return size_; }
   int positionOffset(int b) const { return pos_offset_[b]; }
   int velocityOffset(int b) const { return vel_offset_[b]; }
+  // The stick anchors of contact pair c (SurfaceContact::numAnchors entries, world
+  // coordinates; runtime/contact/coulomb_friction.h) start at anchorOffset(c), after every
+  // body's velocities: y = [positions, velocities, anchors of pair 0, pair 1, ...].
+  int anchorOffset(int c) const { return anchor_offset_[c]; }
+  // Sets the anchors in y (positions set) on their points: the initial state's.
+  void placeAnchors(double* y) const;
+  bool hasAnchors() const {
+    return size_ > num_velocities_ + (bodies_.empty() ? 0 : vel_offset_[0]);
+  }
 
   void rhs(double t, const double* y, double* ydot) override;
   void normalize(double* y) const override;
-  bool hasConstraints() const override { return !joints_.empty() || hasQuasiStatic(); }
+  bool hasConstraints() const override {
+    return !joints_.empty() || hasQuasiStatic() || hasAnchors();
+  }
   // True if any body has quasi-static coordinates (runtime/bodies/quasi_static_modes.h).
   bool hasQuasiStatic() const;
   // Moves the quasi-static coordinates onto their manifold a_s(y) = 0
@@ -121,7 +132,8 @@ class MultibodySystem : public OdeSystem {
   // Returns false if Newton's iteration on the positions did not converge.
   bool project(double t, const double* y, double* corr) override;
   // Projects y itself (joints: positions, then velocities; then the quasi-static
-  // coordinates); false if not converged.
+  // coordinates; then the anchors of the points out of contact onto their points); false if
+  // not converged.
   bool projectState(double* y);
   // Moves only the rigid positions and velocities (elastic coordinates held) until the
   // joints close (runtime/system/static_preload.h).
@@ -192,8 +204,9 @@ class MultibodySystem : public OdeSystem {
   std::vector<Sensor> sensors_;
   int num_constraints_ = 0;
   Eigen::VectorXd lambda_;  // multipliers of the latest rhs()
-  std::vector<int> pos_offset_, vel_offset_;
+  std::vector<int> pos_offset_, vel_offset_, anchor_offset_;
   int size_ = 0;
+  int num_velocities_ = 0;  // of all bodies
   Eigen::Vector3d gravity_ = Eigen::Vector3d::Zero();
   std::vector<Eigen::VectorXd> h_;  // workspace: generalised applied forces per body
   std::vector<ContactState> rhs_states_;
@@ -208,7 +221,12 @@ class MultibodySystem : public OdeSystem {
   // (their a_s is what the relaxation and the projection drive to zero).
   void constrainedAccelerations(const double* y, double* ydot, std::vector<ContactState>* states,
                                 std::vector<LineForceState>* lineStates);
-  int totalVelocities() const { return size_ - (bodies_.empty() ? 0 : vel_offset_[0]); }
+  int totalVelocities() const { return num_velocities_; }
+  // The dense Jacobian's anchor entries (jacobian()): the terms' columns on the anchors and
+  // the anchors' rows.
+  void denseAnchorTerms(const double* y, Eigen::Map<Eigen::MatrixXd>& J);
+  // The anchors' rates of the last contactForces() into ydot.
+  void anchorRates(double* ydot) const;
   // Adds the generalised forces at y of the force elements without stiffness terms (line
   // forces, evaluated in difference quotients) to h (states: optional diagnostics).
   void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,

@@ -25,6 +25,7 @@
 
 #include "common/base/error.h"
 #include "runtime/system/multibody_system.h"
+#include "runtime/system/system_state.h"
 
 namespace ffriga {
 
@@ -189,29 +190,65 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
   Eigen::VectorXd k(n), r(n), dq(n);
   for (int j = 0; j < n; ++j) k(j) = list[j].k;
   std::vector<Eigen::VectorXd> accel(bodies_.size());
-  constexpr int kMaxIterations = 8;
-  double previous = 0.0;  // the last iteration's change (m)
-  for (int it = 0; it < kMaxIterations; ++it) {
-    quasiStaticAccelerations(y, first, accel);
-    for (int j = 0; j < n; ++j) r(j) = accel[list[j].body](list[j].velocity);
-    StiffnessColumns columns;
-    contactStiffnessColumns(*this, list, columns);
-    woodburyStep(k, r, columns, dq);
-    if (!dq.allFinite()) return false;
-    double change = 0.0, size = 0.0;  // m: the largest point displacement of a coordinate
-    applyCorrection(list, dq, y, change, size);
-    // Converged when the correction moves no point by more than 1e-9 of the quasi-static
-    // displacements or 1e-16 m (1e-4 of the default atol_position): the penalty force is
-    // piecewise linear in q_s, so Newton is exact once the active set holds, up to the
-    // neglected turning of the normal (~ gap / element size, 1e-3: a few iterations).
-    if (change <= 1e-9 * size + 1e-16) return true;
-    // Or when Newton has reached the noise of its residual: corrections that stopped
-    // shrinking (more than half the last one) below 1e-7 of the displacements. Seen: a soft
-    // contact (1e15 N/m^3, 40 active points) whose corrections hovered at 1.2e-9 .. 8e-9 of
-    // the displacements for 6 iterations, in a build with other rounding.
-    // The offset left is far below atol_position (1e-7 x ~1e-6 m = 1e-13 m).
-    if (it >= 2 && change <= 1e-7 * size && change > 0.5 * previous) return true;
-    previous = change;
+  // Newton's iteration on a_s = 0; false if it did not converge.
+  const auto newton = [&]() {
+    constexpr int kMaxIterations = 8;
+    double previous = 0.0;  // the last iteration's change (m)
+    for (int it = 0; it < kMaxIterations; ++it) {
+      quasiStaticAccelerations(y, first, accel);
+      for (int j = 0; j < n; ++j) r(j) = accel[list[j].body](list[j].velocity);
+      StiffnessColumns columns;
+      contactStiffnessColumns(*this, list, columns);
+      woodburyStep(k, r, columns, dq);
+      if (!dq.allFinite()) return false;
+      double change = 0.0, size = 0.0;  // m: the largest point displacement of a coordinate
+      applyCorrection(list, dq, y, change, size);
+      // Converged when the correction moves no point by more than 1e-9 of the quasi-static
+      // displacements or 1e-16 m (1e-4 of the default atol_position): the penalty force is
+      // piecewise linear in q_s, so Newton is exact once the active set holds, up to the
+      // neglected turning of the normal (~ gap / element size, 1e-3: a few iterations).
+      if (change <= 1e-9 * size + 1e-16) return true;
+      // Or when Newton has reached the noise of its residual: corrections that stopped
+      // shrinking (more than half the last one) below 1e-7 of the displacements. Seen: a
+      // soft contact (1e15 N/m^3, 40 active points) whose corrections hovered at 1.2e-9 ..
+      // 8e-9 of the displacements for 6 iterations, in a build with other rounding.
+      // The offset left is far below atol_position (1e-7 x ~1e-6 m = 1e-13 m).
+      if (it >= 2 && change <= 1e-7 * size && change > 0.5 * previous) return true;
+      previous = change;
+    }
+    return false;
+  };
+  if (!hasAnchors()) return newton();
+  // Anchored friction: each point keeps its branch through the iteration, a slipping one
+  // with its anchor on the slip limit (SurfaceContact::holdFrictionBranches); sticking
+  // points whose spring ends beyond the limit turn to slip and the iteration runs again
+  // (points only ever turn from stick to slip: at most one round per point); at the end
+  // the slipping points' anchors are put on their limit, where both branches agree.
+  struct HeldBranches {
+    MultibodySystem& system;
+    explicit HeldBranches(MultibodySystem& s) : system(s) {
+      for (int c = 0; c < system.numContacts(); ++c) system.contact(c).holdFrictionBranches(true);
+    }
+    ~HeldBranches() {
+      for (int c = 0; c < system.numContacts(); ++c) system.contact(c).holdFrictionBranches(false);
+    }
+    bool releaseExceeded() {
+      bool any = false;
+      for (int c = 0; c < system.numContacts(); ++c)
+        any = system.contact(c).releaseExceeded() || any;
+      return any;
+    }
+  } held(*this);
+  constexpr int kMaxRounds = 8;
+  for (int round = 0; round < kMaxRounds; ++round) {
+    if (!newton()) return false;
+    quasiStaticAccelerations(y, first, accel);  // the branches' state at the result
+    if (!held.releaseExceeded()) {
+      const SystemState at(*this, y);
+      for (int c = 0; c < numContacts(); ++c)
+        if (contacts_[c]->numAnchors() > 0) contacts_[c]->settleAnchors(at, y + anchor_offset_[c]);
+      return true;
+    }
   }
   return false;
 }

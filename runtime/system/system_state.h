@@ -21,6 +21,9 @@ class SystemState : public ForceContext {
     if (!poses_[b]) poses_[b] = system_.body(b).pose(positions(b));
     return *poses_[b];
   }
+  const double* anchors(int slot) const override {
+    return system_.contact(slot).numAnchors() > 0 ? y_ + system_.anchorOffset(slot) : nullptr;
+  }
 
  private:
   const MultibodySystem& system_;

@@ -996,3 +996,183 @@ TEST_CASE("contact regions: a pair names BODY.REGION of a body with several", "[
              Catch::Contains("key 'bodies[0].name'") &&
                  Catch::Contains("a body name cannot contain '.'"));
 }
+
+namespace {
+
+// One body's state as the force elements see it (a contact's initialAnchors).
+struct OneBodyContext : ForceContext {
+  OneBodyContext(const BodyModel& b, const Eigen::VectorXd& sp)
+      : model(b), positions_(sp), pose_(b.pose(sp.data())) {}
+  const BodyModel& body(int) const override { return model; }
+  const double* positions(int) const override { return positions_.data(); }
+  const double* velocities(int) const override { return nullptr; }
+  const BodyPose& pose(int) const override { return pose_; }
+  const BodyModel& model;
+  Eigen::VectorXd positions_;
+  BodyPose pose_;
+};
+
+}  // namespace
+
+TEST_CASE("obstacle contact with anchored friction: stick, slip and their terms",
+          "[contact][friction]") {
+  // The cap of the stiffness test on the same plane with stick anchors (coulomb_friction.h
+  // AnchoredFriction): each active point's anchor is put off its point along a random
+  // tangent by a multiple m of the slip limit mu |g| (c_t = c_p), m < 1 sticking, m > 1
+  // slipping, so the law's hand values hold: a sticking point carries -c_p w d and its
+  // anchor rests, a slipping one carries mu f_n along -d and its anchor moves at
+  // (m - 1) mu |g| / eta; an anchor out of contact rests, and followAnchors puts it back on
+  // its point (the projection between steps) leaving the others where they are.
+  // The terms (their columns on the anchors and the anchors' rows) are checked against
+  // central differences in every anchor and in the three translations: the forces and rates
+  // are linear or smooth there (no point within 0.3 mu |g| of the slip limit, steps of
+  // 1e-4 of the smallest), so the differences are exact to their round-off (below) and to
+  // 1e-6 of the largest term.
+  const CapOnTiltedPlane setting;
+  const FloatingBody3d& body = setting.body;
+  const Eigen::Vector3d &n = setting.n, &p = setting.p;
+  const Eigen::VectorXd& sp = setting.sp;
+  const double mu = 0.3, eta = 1e-3;
+  ContactOptions opt;
+  opt.penalty = kPenalty;
+  opt.friction.coefficient = mu;
+  opt.friction.anchored = true;
+  opt.friction.relaxation_time = eta;
+  ObstacleContact pair("cap-floor", 0, body, 0, setting.floor(), opt);
+  const int na = pair.numAnchors(), nv = body.numVelocities();
+  REQUIRE(na > 0);
+  REQUIRE(na % 3 == 0);
+  Eigen::VectorXd x0(na);
+  pair.initialAnchors(OneBodyContext(body, sp), x0.data());
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * M_PI);
+  const double multiples[4] = {0.3, 0.7, 1.3, 2.5};
+  const Eigen::Vector3d t1 = n.unitOrthogonal(), t2 = n.cross(t1);
+  Eigen::VectorXd z = x0, expectedRate = Eigen::VectorXd::Zero(na);
+  int stick = 0, slip = 0, active = 0;
+  for (int i = 0; i < na / 3; ++i) {
+    const Eigen::Vector3d x = x0.segment<3>(3 * i);
+    const double g = n.dot(x - p), phi = angle(rng);
+    const Eigen::Vector3d t = std::cos(phi) * t1 + std::sin(phi) * t2;
+    if (g >= 0.0) {  // out of contact: any offset, at rest
+      z.segment<3>(3 * i) -= 1e-3 * t;
+      continue;
+    }
+    const double m = multiples[active++ % 4];
+    z.segment<3>(3 * i) -= m * mu * (-g) * t;  // d = x - z = m mu |g| t
+    (m < 1.0 ? stick : slip)++;
+    if (m > 1.0) expectedRate.segment<3>(3 * i) = (m - 1.0) * mu * (-g) / eta * t;
+  }
+  REQUIRE(stick >= 4);
+  REQUIRE(slip >= 4);
+  auto evaluate = [&](const Eigen::VectorXd& at, const Eigen::VectorXd& anchors, ContactState& s,
+                      Eigen::VectorXd& rate) {
+    Eigen::VectorXd h = Eigen::VectorXd::Zero(nv);
+    pair.evaluate(body, body.pose(at.data()), h.data(), &s, nullptr, anchors.data());
+    rate = pair.anchorRates();
+    return h;
+  };
+  ContactState s0;
+  Eigen::VectorXd rate0;
+  const Eigen::VectorXd h0 = evaluate(sp, z, s0, rate0);
+  CHECK(s0.active_points == active);
+  CHECK(s0.sticking_points == stick);
+  CHECK(s0.slipping_points == slip);
+  CHECK((rate0 - expectedRate).cwiseAbs().maxCoeff() <= 1e-12 * expectedRate.cwiseAbs().maxCoeff());
+  CHECK(s0.tangential_force.dot(n) == Approx(0.0).margin(1e-12 * s0.normal_force));
+  CHECK(s0.tangential_force.norm() < mu * s0.normal_force);
+  CHECK(s0.friction_power > 0.0);
+  const std::vector<StiffnessTerm> terms = pair.stiffnessTerms();
+  // The predicted changes of h and of the anchors' rates for a change ds of the positions
+  // and dz of the anchors.
+  auto predicted = [&](const Eigen::VectorXd& ds, const Eigen::VectorXd& dz, Eigen::VectorXd& dh,
+                       Eigen::VectorXd& drate) {
+    dh = Eigen::VectorXd::Zero(nv);
+    drate = Eigen::VectorXd::Zero(na);
+    for (const StiffnessTerm& t : terms) {
+      double v = t.bpC.dot(ds);
+      if (t.anchor >= 0) v += t.aV.dot(dz.segment(t.anchor, t.aV.size()));
+      dh -= t.k * t.bvC * v;
+      if (t.anchor >= 0) drate.segment(t.anchor, t.aU.size()) += t.aU * v;
+    }
+  };
+  // The steps: 1e-4 of the smallest slip limit of an active point (no point crosses its
+  // limit or the plane). Round-off: eps |x| / eta of every rate and eps |h| of every force,
+  // per evaluation, over the step.
+  double limit = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < na / 3; ++i) {
+    const double g = n.dot(x0.segment<3>(3 * i) - p);
+    if (g < 0.0) limit = std::min(limit, mu * -g);
+  }
+  const double step = 1e-4 * limit, eps = std::numeric_limits<double>::epsilon();
+  const double roundoffRate = 10.0 * eps * x0.cwiseAbs().maxCoeff() / eta / step;
+  // followAnchors: the anchors out of contact back on their points, the others held.
+  Eigen::VectorXd followed = z;
+  pair.followAnchors(OneBodyContext(body, sp), followed.data());
+  for (int i = 0; i < na / 3; ++i) {
+    const bool out = n.dot(x0.segment<3>(3 * i) - p) >= 0.0;
+    CHECK(followed.segment<3>(3 * i) == (out ? x0 : z).segment<3>(3 * i));
+  }
+  const double roundoffForce = 10.0 * eps * h0.cwiseAbs().maxCoeff() / step;
+  auto compare = [&](const Eigen::VectorXd& ds, const Eigen::VectorXd& dz) {
+    ContactState a, b;
+    Eigen::VectorXd ra, rb, dh, drate;
+    const Eigen::VectorXd fd = (evaluate(sp + step * ds, z + step * dz, a, ra) -
+                                evaluate(sp - step * ds, z - step * dz, b, rb)) /
+                               (2.0 * step);
+    REQUIRE(a.sticking_points == stick);
+    REQUIRE(b.sticking_points == stick);
+    REQUIRE(a.active_points == active);
+    REQUIRE(b.active_points == active);
+    predicted(ds, dz, dh, drate);
+    const Eigen::VectorXd fdRate = (ra - rb) / (2.0 * step);
+    CHECK((fd - dh).cwiseAbs().maxCoeff() <= 1e-6 * dh.cwiseAbs().maxCoeff() + roundoffForce);
+    CHECK((fdRate - drate).cwiseAbs().maxCoeff() <=
+          1e-6 * drate.cwiseAbs().maxCoeff() + roundoffRate);
+  };
+  const Eigen::VectorXd noS = Eigen::VectorXd::Zero(sp.size()), noZ = Eigen::VectorXd::Zero(na);
+  for (int j = 0; j < na; ++j) {
+    INFO("anchor entry " << j);
+    compare(noS, Eigen::VectorXd::Unit(na, j));
+  }
+  for (int j = 0; j < 3; ++j) {
+    INFO("translation " << j);
+    compare(Eigen::VectorXd::Unit(sp.size(), j), noZ);
+  }
+}
+
+TEST_CASE("obstacle contact scene: anchored friction adds the anchors; a pair refuses it",
+          "[contact][friction]") {
+  // The ball over the floor with friction_law anchored: two anchor entries per collocation
+  // point (axisymmetric) after the ball's state, each on its point at the start (followed
+  // points: the initial state is the projection's), at the atol of rtol times the surface's
+  // size.
+  const std::string anchored = test::replaced(
+      kBallScene, "    penalty_factor: 1.0e13\n",
+      "    penalty_factor: 1.0e13\n    friction_coefficient: 0.2\n    friction_law: anchored\n");
+  const Scene scene =
+      buildScene(parseYamlText(anchored, "scene.yaml"), {}, ballLoader(ball2d(0.01)));
+  const MultibodySystem& sys = *scene.system;
+  const SurfaceContact& pair = sys.contact(0);
+  const int na = pair.numAnchors();
+  REQUIRE(na > 0);
+  CHECK(na % 2 == 0);
+  CHECK(sys.anchorOffset(0) == sys.velocityOffset(0) + sys.body(0).numVelocities());
+  CHECK(sys.size() == sys.anchorOffset(0) + na);
+  REQUIRE(scene.y0.size() == sys.size());
+  // The bottom pole (a collocation point) sits at height 0.0001 m on the axis.
+  double lowest = 1.0;
+  for (int i = 0; i < na / 2; ++i)
+    lowest = std::min(lowest, scene.y0(sys.anchorOffset(0) + 2 * i + 1));
+  CHECK(lowest == Approx(1e-4).epsilon(1e-12));
+  CHECK(scene.settings.integrator.atol(sys.anchorOffset(0)) ==
+        Approx(scene.settings.integrator.rtol * pair.surfaceSize()).epsilon(1e-15));
+  // Two bodies: not yet (one line, the key named).
+  const std::string two =
+      test::replaced(test::replaced(anchored, "obstacles:\n",
+                                    "  - name: ball2\n    sid: obstacle_ball.sid.h5\n"
+                                    "    position: [0, 0.0302, 0]\nobstacles:\n"),
+                     "bodies: [ball, floor]", "bodies: [ball, ball2]");
+  CHECK_THAT(sceneError(two), Catch::Contains("key 'contacts[0].friction_law'") &&
+                                  Catch::Contains("between a body and an obstacle only"));
+}
