@@ -22,6 +22,16 @@ Eigen::VectorXd anyTangent(const Eigen::VectorXd& n) {
   return t.normalized();
 }
 
+// A term of the same bodies as the point's normal term, of the given kind and k.
+StiffnessTerm termBeside(const StiffnessTerm& normal, StiffnessTerm::Kind kind, double k) {
+  StiffnessTerm t;
+  t.body_c = normal.body_c;
+  t.body_t = normal.body_t;
+  t.kind = kind;
+  t.k = k;
+  return t;
+}
+
 }  // namespace
 
 PointFriction coulombFriction(const FrictionLaw& law, double normal_force, const Eigen::VectorXd& v,
@@ -49,11 +59,7 @@ void appendFrictionTerms(
     const std::function<void(const Eigen::VectorXd& e, StiffnessTerm& t)>& gradients,
     std::vector<StiffnessTerm>& terms) {
   const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e) {
-    StiffnessTerm t;
-    t.body_c = normal.body_c;
-    t.body_t = normal.body_t;
-    t.kind = kind;
-    t.k = k;
+    StiffnessTerm t = termBeside(normal, kind, k);
     gradients(e, t);
     t.bpC = t.onVelocities() ? t.bvC : normal.bpC;
     t.bpT = t.onVelocities() ? t.bvT : normal.bpT;
@@ -69,24 +75,20 @@ AnchoredFriction anchoredFriction(const FrictionLaw& law, double normal_force, d
                                   const Eigen::VectorXd& r, const Eigen::VectorXd& n,
                                   FrictionBranch branch, const Eigen::VectorXd* e1) {
   AnchoredFriction f;
-  if (branch == FrictionBranch::kFollow) {
-    const double limit = law.coefficient * normal_force / k_t;
+  const double limit = law.coefficient * normal_force / k_t;  // d_lim (m)
+  f.rate = Eigen::VectorXd::Zero(r.size());
+  const bool follow = branch == FrictionBranch::kFollow;
+  const Eigen::VectorXd d = r - r.dot(n) * n;
+  f.d = follow ? limit : d.norm();
+  f.e1 = follow ? *e1 : f.d > 0.0 ? Eigen::VectorXd(d / f.d) : anyTangent(n);
+  if (n.size() == 3) f.e2 = Eigen::Vector3d(n).cross(Eigen::Vector3d(f.e1));
+  if (follow) {
     f.sticking = false;
     f.following = true;
-    f.e1 = *e1;
-    if (n.size() == 3) f.e2 = Eigen::Vector3d(n).cross(Eigen::Vector3d(f.e1));
-    f.d = limit;
     f.force = (-law.coefficient * normal_force) * f.e1;
-    f.rate = Eigen::VectorXd::Zero(r.size());
     f.energy = 0.5 * k_t * limit * limit;
     return f;
   }
-  const Eigen::VectorXd d = r - r.dot(n) * n;
-  f.d = d.norm();
-  f.e1 = f.d > 0.0 ? Eigen::VectorXd(d / f.d) : anyTangent(n);
-  if (n.size() == 3) f.e2 = Eigen::Vector3d(n).cross(Eigen::Vector3d(f.e1));
-  const double limit = law.coefficient * normal_force / k_t;  // d_lim (m)
-  f.rate = Eigen::VectorXd::Zero(r.size());
   if (branch == FrictionBranch::kStick || (branch == FrictionBranch::kDecide && f.d <= limit)) {
     f.force = -k_t * d;
     f.energy = 0.5 * k_t * f.d * f.d;
@@ -110,11 +112,7 @@ void appendAnchoredTerms(
   // columns -e (the term's variable is e . (x - z)).
   const auto add = [&](StiffnessTerm::Kind kind, double k, const Eigen::VectorXd& e,
                        const Eigen::VectorXd& aU) {
-    StiffnessTerm t;
-    t.body_c = normal.body_c;
-    t.body_t = normal.body_t;
-    t.kind = kind;
-    t.k = k;
+    StiffnessTerm t = termBeside(normal, kind, k);
     gradients(e, t);
     t.anchor = anchor;
     t.aU = aU;
@@ -126,11 +124,7 @@ void appendAnchoredTerms(
   // Through the normal force, f_t = -mu f_n e1: d f_n / d s_p = -k bp_n^T (the normal term's
   // k and bp).
   const auto load = [&]() {
-    StiffnessTerm t;
-    t.body_c = normal.body_c;
-    t.body_t = normal.body_t;
-    t.kind = StiffnessTerm::Kind::kFrictionLoad;
-    t.k = normal.k;
+    StiffnessTerm t = termBeside(normal, StiffnessTerm::Kind::kFrictionLoad, normal.k);
     gradients(-mu * f.e1, t);
     t.bpC = normal.bpC;
     t.bpT = normal.bpT;

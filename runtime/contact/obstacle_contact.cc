@@ -86,11 +86,9 @@ void ObstacleContact::placeAnchors(const ForceContext& at, double* z, bool outOn
 
 bool ObstacleContact::releaseExceeded() {
   bool any = false;
-  for (std::size_t i = 0; i < branches_.size(); ++i) {
-    if (branches_[i] != 3) continue;
-    branches_[i] = 2;
-    for (const ActivePoint& a : active_)
-      if (a.i == static_cast<int>(i)) held_directions_.segment(i * dim_, dim_) = a.anchored.e1;
+  for (char& b : branches_) {
+    if (b != 3) continue;
+    b = 2;  // its direction was kept when it exceeded
     any = true;
   }
   return any;
@@ -132,7 +130,7 @@ void ObstacleContact::addAnchoredFriction(const Eigen::Vector3d& x, const double
   point.fn = fn;
   if (!(point.k > 0.0)) return;  // weight 0 (an axisymmetric body's axis point): no force
   FrictionBranch branch = FrictionBranch::kDecide;
-  const Eigen::VectorXd* e1 = nullptr;
+  Eigen::VectorXd e1;
   char* held = nullptr;
   if (hold_branches_) {
     if (branches_.empty()) {
@@ -142,20 +140,18 @@ void ObstacleContact::addAnchoredFriction(const Eigen::Vector3d& x, const double
     held = &branches_[point.i];
     if (*held == 2) {
       branch = FrictionBranch::kFollow;
-      held_e1_ = held_directions_.segment(point.i * dim_, dim_);
-      e1 = &held_e1_;
+      e1 = held_directions_.segment(point.i * dim_, dim_);
     } else if (*held != 0) {
       branch = FrictionBranch::kStick;
     }
   }
   point.anchored =
-      anchoredFriction(options_.friction, fn, point.k, x.head(dim_) - zi, point.n, branch, e1);
-  if (held && *held == 0) {
-    *held = point.anchored.sticking ? 1 : 2;
-    if (*held == 2) held_directions_.segment(point.i * dim_, dim_) = point.anchored.e1;
-  }
+      anchoredFriction(options_.friction, fn, point.k, x.head(dim_) - zi, point.n, branch, &e1);
+  if (held && *held == 0) *held = point.anchored.sticking ? 1 : 2;
   if (held && (*held == 1 || *held == 3))  // a held spring beyond the limit: to be released
     *held = point.anchored.d > options_.friction.coefficient * fn / point.k ? 3 : 1;
+  if (held && *held != 1)  // the direction it slips (or will) along
+    held_directions_.segment(point.i * dim_, dim_) = point.anchored.e1;
   const AnchoredFriction& a = point.anchored;
   f += a.force;
   s.tangential_force.head(dim_) += a.force;

@@ -80,7 +80,6 @@ class ObstacleContact : public SurfaceContact {
     double fn = 0.0;            // N, the normal force
   };
   bool anchored() const { return options_.friction.active() && options_.friction.anchored; }
-  Eigen::VectorXd held_e1_;  // workspace: a held slip direction
   // Anchored friction at active point `point` with normal force fn, anchor z (dim_ entries)
   // and world position x: adds the tangential force to f, its figures to s, the anchor's
   // rate to anchor_rates_.

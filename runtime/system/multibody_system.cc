@@ -20,9 +20,6 @@ void MultibodySystem::addForceElement(std::unique_ptr<ForceElement> element) {
   if (auto* pair = dynamic_cast<SurfaceContact*>(element.get())) {
     pair->setSlot(numContacts());
     contacts_.push_back(pair);
-    forces_.push_back(std::move(element));
-    layout();  // its anchors
-    return;
   } else if (auto* line = dynamic_cast<LineForce*>(element.get())) {
     line->setSlot(numLineForces());
     line_forces_.push_back(line);
@@ -30,6 +27,7 @@ void MultibodySystem::addForceElement(std::unique_ptr<ForceElement> element) {
     FFRIGA_CHECK(false, "force element '" << element->name() << "' of an unknown kind");
   }
   forces_.push_back(std::move(element));
+  layout();  // a contact pair's anchors
 }
 
 bool MultibodySystem::hasQuotientForces() const {
