@@ -80,7 +80,8 @@ void ObstacleContact::placeAnchors(const ForceContext& at, double* z, bool outOn
       const ObstaclePoint p = obstacle_.nearest(x);
       if (p.covered && p.gap < 0.0) continue;
     }
-    Eigen::Map<Eigen::VectorXd>(z + i * dim_, dim_) = x.head(dim_);
+    for (int a = 0; a < dim_; ++a) z[i * dim_ + a] = x(a);  // (an Eigen block copy here
+    // made GCC 12 warn of a 32-byte read from the 24-byte x)
   }
 }
 
