@@ -1,29 +1,30 @@
 #!/usr/bin/python3
-"""Steps, failed steps and integration time of ffrsim's impacts with the quasi-static
-coordinates in CVODE's error test and without (issue 32, item 2).
-
-The quasi-static coordinates (runtime/bodies/quasi_static_modes.h) are algebraic: the
-projection after every step puts them on their equilibrium. With `integrator.error_test:
-all` (ffrsim before 2026-12-07) CVODE's local error test weighed them too, and their
-error estimate (corrector minus predictor) is large wherever a collocation point enters or
-leaves contact: the penalty force has a kink there, which no polynomial predictor follows.
-With `differential` (the default now; runtime/integration/error_weights.h) they are left
-out of the error and convergence tests.
+"""Where an impact's steps go: steps, failed steps and integration time of ffrsim's scenes,
+each run as it is and in variants given as scene overrides (issue 32, item 2: "the step
+count with its failures before and after").
 
 For each scene (configs/scenes/<name>.yaml; its SIDs built once with igaprep from
-configs/bodies/ into --sids) and each variant, it runs ffrsim --repeat times and prints,
-from the result file's attributes: steps (solver_steps), error-test and convergence
-failures and their share of the attempts, Newton iterations, the integration wall time
-(wall_time_s, median over the repeats), the force peak (max_contact_force_N), the contact
-duration (contact_duration_s) and, for two free bodies, the coefficient of restitution
-(relative velocity along the line of centres after / before). Variants: "all" and
-"differential", and with --atol-velocity V a third, "differential" with
-integrator.atol_velocity = V.
+configs/bodies/ into --sids; ParaView frames left out, they are written in the time loop)
+and each variant, it runs ffrsim --repeat times and prints, from the result file's
+attributes: steps (solver_steps), error-test and convergence failures and their share of
+the attempts, Newton iterations, the integration wall time (wall_time_s, median over the
+repeats), the force peak (max_contact_force_N), the contact duration (contact_duration_s)
+and, for two free bodies, the coefficient of restitution (relative velocity along the line
+of centres after / before), and the force peak and duration against the first variant.
 
-usage: benchmarks/step_control.py [--build build] [--sids build/benchmarks/sids]
-           [--scenes impact2d_h3,impact3d_h3,...] [--repeat 3] [--atol-velocity V]
+A variant is LABEL=KEY=VALUE[,KEY=VALUE...] (ffrsim --set overrides), e.g.
+--variant "atol_v 2e-7=integrator.atol_velocity=2e-7"; the scene as it is runs first
+("scene"). --ffrsim takes another build's ffrsim for every run (a change against the
+commit before it: run the script twice, --json each, and compare).
+
+usage: benchmarks/step_control.py [--build build] [--ffrsim PATH] [--sids build/benchmarks/sids]
+           [--scenes impact2d_h3,impact3d_h3,...] [--repeat 3] [--variant LABEL=K=V,...]...
            [--text out.txt] [--json out.json] [--plot out.png]
        benchmarks/step_control.py --plot-only RESULTS.json out.png
+
+results/step_control_2026-12-07.* were measured with the build of commit c629401, whose
+integrator.error_test option (variants "all" and "differential") was reverted: see
+benchmarks/README.md.
 """
 import argparse
 import json
@@ -92,10 +93,9 @@ def scene_without_frames(scene, folder):
     return path
 
 
-def run(build, scene, sid_dir, sets, folder):
+def run(ffrsim, scene, sid_dir, sets, folder):
     out = os.path.join(folder, "result.h5")
-    cmd = [os.path.join(build, "bin", "ffrsim"), scene_without_frames(scene, folder), "-o", out,
-           "--sid-path", sid_dir, "-q"]
+    cmd = [ffrsim, scene_without_frames(scene, folder), "-o", out, "--sid-path", sid_dir, "-q"]
     for s in sets:
         cmd += ["--set", s]
     subprocess.run(cmd, check=True)
@@ -115,9 +115,9 @@ def run(build, scene, sid_dir, sets, folder):
         }
 
 
-def measure(build, scene, sid_dir, sets, repeat):
+def measure(ffrsim, scene, sid_dir, sets, repeat):
     with tempfile.TemporaryDirectory() as folder:
-        runs = [run(build, scene, sid_dir, sets, folder) for _ in range(repeat)]
+        runs = [run(ffrsim, scene, sid_dir, sets, folder) for _ in range(repeat)]
     r = dict(runs[0])
     r["wall_s"] = statistics.median(x["wall_s"] for x in runs)
     r["wall_s_runs"] = [x["wall_s"] for x in runs]
@@ -151,8 +151,7 @@ def plot(rows, variants, path):
         ax.set_yscale("log")
         ax.set_title(title)
         ax.legend(fontsize=7)
-    fig.suptitle("error test over all coordinates vs the differential ones "
-                 "(benchmarks/step_control.py)")
+    fig.suptitle("steps and integration time by variant (benchmarks/step_control.py)")
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -163,7 +162,8 @@ def main():
     ap.add_argument("--sids", default=os.path.join(ROOT, "build", "benchmarks", "sids"))
     ap.add_argument("--scenes", default=",".join(SCENES))
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--atol-velocity", type=float)
+    ap.add_argument("--ffrsim")
+    ap.add_argument("--variant", action="append", default=[])
     ap.add_argument("--text")
     ap.add_argument("--json")
     ap.add_argument("--plot")
@@ -174,10 +174,13 @@ def main():
         plot(rows, list(dict.fromkeys(r["variant"] for r in rows)), args.plot_only[1])
         return 0
     os.makedirs(args.sids, exist_ok=True)
-    variants = {"all": ["integrator.error_test=all"], "differential": []}
-    if args.atol_velocity:
-        variants[f"differential, atol_velocity {args.atol_velocity:g}"] = [
-            f"integrator.atol_velocity={args.atol_velocity!r}"]
+    ffrsim = args.ffrsim or os.path.join(args.build, "bin", "ffrsim")
+    variants = {"scene": []}
+    for v in args.variant:
+        label, _, sets = v.partition("=")
+        if not sets:
+            ap.error(f"--variant {v}: expected LABEL=KEY=VALUE[,KEY=VALUE...]")
+        variants[label] = sets.split(",")
     lines = []
 
     def say(s):
@@ -193,7 +196,7 @@ def main():
             build_sid(args.build, body, args.sids)
         base = None
         for name, sets in variants.items():
-            r = measure(args.build, scene, args.sids, sets, args.repeat)
+            r = measure(ffrsim, scene, args.sids, sets, args.repeat)
             r.update(scene=scene, variant=name)
             rows.append(r)
             base = base or r

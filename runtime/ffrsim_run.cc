@@ -1,6 +1,5 @@
 #include "runtime/ffrsim_run.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <utility>
@@ -106,9 +105,6 @@ void FfrsimRun::open() {
     if (config_.verbosity > 0)
       for (const std::string& w : scene_.warnings) std::fprintf(stderr, "ffrsim: warning: %s\n", w.c_str());
     writeWarnings(file, scene_.warnings);
-    const std::vector<bool>& algebraic = scene_.settings.integrator.algebraic;
-    file.setAttribute("error_test_excluded_components",
-                      static_cast<long>(std::count(algebraic.begin(), algebraic.end(), true)));
     if (scene_.static_preload)
       writeStaticPreload(file, scene_.preload.iterations, scene_.preload.residual,
                          scene_.preload.elastic_force);

@@ -20,8 +20,7 @@
 // the energy stored in these coordinates: below 1e-8 for the impacts of Sect. 5-7.
 // CVODE's Newton iteration holds the relaxation only to its tolerance, so after every step
 // (and for every output row) the state is projected onto a_s = 0 exactly
-// (runtime/system/quasi_static_projection.cc); being algebraic, the coordinates are left out
-// of CVODE's error test (runtime/integration/error_weights.h, integrator.error_test).
+// (runtime/system/quasi_static_projection.cc).
 // The rest of the body's equations are untouched: the quasi-static coordinates move the
 // contact surface and carry elastic energy 1/2 k_i q_i^2, so energy is conserved to the
 // integrator's accuracy (no modal damping needed).

@@ -16,7 +16,6 @@
 #include "common/base/error.h"
 #include "common/base/spelling.h"
 #include "runtime/integration/eigen_dense_solver.h"
-#include "runtime/integration/error_weights.h"
 #include "runtime/integration/structured_solver.h"
 
 namespace ffriga {
@@ -32,7 +31,6 @@ struct BdfIntegrator::Impl {
   std::exception_ptr rhs_error;
   std::string last_message;
   std::unique_ptr<StructuredSolverData> structured;  // set if the structured solver is used
-  ErrorWeights weights;
 
   void check(int flag, const char* call) const {
     if (flag >= 0) return;
@@ -64,8 +62,9 @@ struct BdfIntegrator::Impl {
     Impl* self = static_cast<Impl*>(data);
     try {
       if (CVodeGetErrWeights(self->cvode, tmp1) < 0) return -1;
-      std::vector<double> scale;
-      self->weights.differenceScale(y, tmp1, scale);
+      const sunindextype n = N_VGetLength(tmp1);
+      std::vector<double> scale(n);
+      for (sunindextype i = 0; i < n; ++i) scale[i] = 1.0 / NV_Ith_S(tmp1, i);
       SUNMatZero(J);
       self->system->jacobian(t, N_VGetArrayPointer(y), N_VGetArrayPointer(fy), scale.data(),
                              SUNDenseMatrix_Data(J));
@@ -84,10 +83,6 @@ struct BdfIntegrator::Impl {
                                   tmp3);
   }
 
-  static int errorWeights(N_Vector y, N_Vector ewt, void* data) {
-    return ErrorWeights::evaluate(y, ewt, &static_cast<Impl*>(data)->weights);
-  }
-
   static int project(realtype t, N_Vector ycur, N_Vector corr, realtype, N_Vector, void* data) {
     Impl* self = static_cast<Impl*>(data);
     try {
@@ -98,38 +93,45 @@ struct BdfIntegrator::Impl {
     }
   }
 
-  void setTolerances(const IntegratorOptions& o);
-  void attachLinearSolver(double t0, const Eigen::VectorXd& y0, const IntegratorOptions& o);
-
   static void errorHandler(int, const char* module, const char* function, char* msg, void* data) {
     static_cast<Impl*>(data)->last_message = Str() << module << "/" << function << ": " << msg;
   }
 };
 
-// Phase 1: the error weights: CVODE's own from rtol and atol, or with algebraic
-// components those of runtime/integration/error_weights.h.
-void BdfIntegrator::Impl::setTolerances(const IntegratorOptions& o) {
-  const int n = system->size();
-  weights.rtol = o.rtol;
-  weights.atol = o.atol;
-  if (!o.algebraic.empty()) {
-    FFRIGA_CHECK(static_cast<int>(o.algebraic.size()) == n,
-                 "algebraic has " << o.algebraic.size() << " entries, system " << n);
-    weights.algebraic = o.algebraic;
-  }
-  if (weights.anyAlgebraic())
-    check(CVodeWFtolerances(cvode, &Impl::errorWeights), "CVodeWFtolerances");
-  else
-    check(CVodeSVtolerances(cvode, o.rtol, atol), "CVodeSVtolerances");
-}
-
-// Phase 2: the Newton matrix's solver: structured if asked for (kAuto) and the system has
-// it at the initial state, else dense with the system's own Jacobian or CVODE's quotients.
-void BdfIntegrator::Impl::attachLinearSolver(double t0, const Eigen::VectorXd& y0,
-                                             const IntegratorOptions& o) {
-  Impl& m = *this;
-  OdeSystem& system = *m.system;
+BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd& y0,
+                             const IntegratorOptions& o)
+    : impl_(new Impl) {
+  Impl& m = *impl_;
+  m.system = &system;
   const int n = system.size();
+  FFRIGA_CHECK(y0.size() == n, "initial state has " << y0.size() << " entries, system " << n);
+  FFRIGA_CHECK(o.atol.size() == n, "atol has " << o.atol.size() << " entries, system " << n);
+  if (SUNContext_Create(nullptr, &m.ctx) != 0) throw ComputeError("SUNContext_Create failed");
+  m.y = N_VNew_Serial(n, m.ctx);
+  m.atol = N_VNew_Serial(n, m.ctx);
+  if (!m.y || !m.atol) throw ComputeError("CVODE: N_VNew_Serial failed (out of memory?)");
+  for (int i = 0; i < n; ++i) {
+    NV_Ith_S(m.y, i) = y0(i);
+    NV_Ith_S(m.atol, i) = o.atol(i);
+  }
+  m.cvode = CVodeCreate(CV_BDF, m.ctx);
+  if (!m.cvode) throw ComputeError("CVODE: CVodeCreate failed (out of memory?)");
+  m.check(CVodeSetErrHandlerFn(m.cvode, &Impl::errorHandler, &m), "CVodeSetErrHandlerFn");
+  m.check(CVodeInit(m.cvode, &Impl::rhs, t0, m.y), "CVodeInit");
+  m.check(CVodeSetUserData(m.cvode, &m), "CVodeSetUserData");
+  m.check(CVodeSVtolerances(m.cvode, o.rtol, m.atol), "CVodeSVtolerances");
+  m.check(CVodeSetMaxNumSteps(m.cvode, o.max_steps), "CVodeSetMaxNumSteps");
+  m.check(CVodeSetMaxOrd(m.cvode, o.max_order), "CVodeSetMaxOrd");
+  if (o.max_step > 0.0) m.check(CVodeSetMaxStep(m.cvode, o.max_step), "CVodeSetMaxStep");
+  if (o.initial_step > 0.0) m.check(CVodeSetInitStep(m.cvode, o.initial_step), "CVodeSetInitStep");
+  // Constraints: CVODE projects onto the constraint manifold after every step. The error
+  // estimate is left unprojected (CVodeSetProjErrEst off): its constraint-normal part is
+  // of the order of the projection itself, and the joint scenes' tolerances are set for it.
+  if (system.hasConstraints()) {
+    m.check(CVodeSetProjFn(m.cvode, &Impl::project), "CVodeSetProjFn");
+    m.check(CVodeSetProjErrEst(m.cvode, SUNFALSE), "CVodeSetProjErrEst");
+  }
+  // Structured Newton matrix if asked for (kAuto) and the system has it at the initial state.
   Eigen::VectorXd scale0 = Eigen::VectorXd::Ones(n);
   for (int i = 0; i < n; ++i) scale0(i) = std::max(std::abs(y0(i)), o.atol(i) / o.rtol);
   if (o.linear_solver == LinearSolverKind::kAuto) {
@@ -138,7 +140,6 @@ void BdfIntegrator::Impl::attachLinearSolver(double t0, const Eigen::VectorXd& y
       data->system = &system;
       data->cvode = m.cvode;
       data->error = &m.rhs_error;
-      data->weights = &m.weights;
       data->J = StructuredJacobian();  // evaluated again at CVODE's first setup
       m.structured = std::move(data);
     }
@@ -166,46 +167,7 @@ void BdfIntegrator::Impl::attachLinearSolver(double t0, const Eigen::VectorXd& y
     system.rhs(t0, y0.data(), f.data());
     if (system.jacobian(t0, y0.data(), f.data(), scale.data(), J.data()))
       m.check(CVodeSetJacFn(m.cvode, &Impl::jacobian), "CVodeSetJacFn");
-    else  // CVODE's own difference quotients step by 1 / w_j: infinite where w_j = 0
-      FFRIGA_CHECK(!m.weights.anyAlgebraic(),
-                   "algebraic components need the system's own Jacobian");
   }
-}
-
-BdfIntegrator::BdfIntegrator(OdeSystem& system, double t0, const Eigen::VectorXd& y0,
-                             const IntegratorOptions& o)
-    : impl_(new Impl) {
-  Impl& m = *impl_;
-  m.system = &system;
-  const int n = system.size();
-  FFRIGA_CHECK(y0.size() == n, "initial state has " << y0.size() << " entries, system " << n);
-  FFRIGA_CHECK(o.atol.size() == n, "atol has " << o.atol.size() << " entries, system " << n);
-  if (SUNContext_Create(nullptr, &m.ctx) != 0) throw ComputeError("SUNContext_Create failed");
-  m.y = N_VNew_Serial(n, m.ctx);
-  m.atol = N_VNew_Serial(n, m.ctx);
-  if (!m.y || !m.atol) throw ComputeError("CVODE: N_VNew_Serial failed (out of memory?)");
-  for (int i = 0; i < n; ++i) {
-    NV_Ith_S(m.y, i) = y0(i);
-    NV_Ith_S(m.atol, i) = o.atol(i);
-  }
-  m.cvode = CVodeCreate(CV_BDF, m.ctx);
-  if (!m.cvode) throw ComputeError("CVODE: CVodeCreate failed (out of memory?)");
-  m.check(CVodeSetErrHandlerFn(m.cvode, &Impl::errorHandler, &m), "CVodeSetErrHandlerFn");
-  m.check(CVodeInit(m.cvode, &Impl::rhs, t0, m.y), "CVodeInit");
-  m.check(CVodeSetUserData(m.cvode, &m), "CVodeSetUserData");
-  m.setTolerances(o);
-  m.check(CVodeSetMaxNumSteps(m.cvode, o.max_steps), "CVodeSetMaxNumSteps");
-  m.check(CVodeSetMaxOrd(m.cvode, o.max_order), "CVodeSetMaxOrd");
-  if (o.max_step > 0.0) m.check(CVodeSetMaxStep(m.cvode, o.max_step), "CVodeSetMaxStep");
-  if (o.initial_step > 0.0) m.check(CVodeSetInitStep(m.cvode, o.initial_step), "CVodeSetInitStep");
-  // Constraints: CVODE projects onto the constraint manifold after every step. The error
-  // estimate is left unprojected (CVodeSetProjErrEst off): its constraint-normal part is
-  // of the order of the projection itself, and the joint scenes' tolerances are set for it.
-  if (system.hasConstraints()) {
-    m.check(CVodeSetProjFn(m.cvode, &Impl::project), "CVodeSetProjFn");
-    m.check(CVodeSetProjErrEst(m.cvode, SUNFALSE), "CVodeSetProjErrEst");
-  }
-  m.attachLinearSolver(t0, y0, o);
 }
 
 bool BdfIntegrator::structured() const {

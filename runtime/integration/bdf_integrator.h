@@ -14,7 +14,6 @@
 #include <memory>
 #include <string>
 #include <string_view>
-#include <vector>
 
 #include <Eigen/Dense>
 
@@ -33,11 +32,6 @@ struct IntegratorOptions {
   LinearSolverKind linear_solver = LinearSolverKind::kAuto;
   double rtol = 1e-6;         // relative tolerance (dimensionless)
   Eigen::VectorXd atol;       // absolute tolerance per component (units of y)
-  // Components left out of the error and convergence tests (weight 0; runtime/integration/
-  // error_weights.h): the quasi-static coordinates, which the system's projection after
-  // every step puts on their manifold. Empty: every component is tested (CVODE's own
-  // weights, CVodeSVtolerances).
-  std::vector<bool> algebraic;
   double max_step = 0.0;      // s; 0: unlimited
   double initial_step = 0.0;  // s; 0: CVODE's estimate
   long max_steps = 1000000;   // internal steps per call of advance()

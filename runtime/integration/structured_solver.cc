@@ -47,8 +47,9 @@ int structuredLinearSystem(realtype t, N_Vector y, N_Vector, SUNMatrix, booleant
   try {
     if (!jok || d.J.n == 0) {
       if (CVodeGetErrWeights(d.cvode, tmp1) < 0) return -1;
-      std::vector<double> scale;
-      d.weights->differenceScale(y, tmp1, scale);
+      const sunindextype n = N_VGetLength(tmp1);
+      std::vector<double> scale(n);
+      for (sunindextype i = 0; i < n; ++i) scale[i] = 1.0 / NV_Ith_S(tmp1, i);
       if (!d.system->structuredJacobian(t, N_VGetArrayPointer(y), scale.data(), d.J)) return -1;
       *jcur = SUNTRUE;
     } else {

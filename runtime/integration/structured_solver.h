@@ -16,7 +16,6 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_linearsolver.h>
 
-#include "runtime/integration/error_weights.h"
 #include "runtime/integration/ode_system.h"
 #include "runtime/integration/structured_newton.h"
 
@@ -26,7 +25,6 @@ struct StructuredSolverData {
   OdeSystem* system = nullptr;
   void* cvode = nullptr;                // for the error weights (difference-quotient increments)
   std::exception_ptr* error = nullptr;  // where a system exception is parked for rethrow
-  const ErrorWeights* weights = nullptr;  // the difference quotients' increment scale
   StructuredJacobian J;
   StructuredNewtonMatrix N;
   bool factored = false;

@@ -92,7 +92,6 @@ class SceneBuilder {
   std::vector<InitialPose> poses_;
   bool axisymmetric_ = false;
   AbsoluteTolerances atol_;
-  bool differential_error_test_ = true;  // integrator.error_test
 };
 
 // 1.-2. The schema, the names, the number of output rows.
@@ -335,9 +334,6 @@ void SceneBuilder::readIntegrator() {
   // YAML spelling of LinearSolverKind (the schema restricts the values to these).
   s.integrator.linear_solver =
       getKind<LinearSolverKind>(doc(), I["linear_solver"], "integrator.linear_solver");
-  // "differential" (the schema's default) or "all" (the schema restricts the values).
-  differential_error_test_ =
-      getString(doc(), I["error_test"], "integrator.error_test") == "differential";
 }
 
 // 6. Joints, force elements, sensors; initial joint angles.
@@ -360,13 +356,6 @@ void SceneBuilder::assembleState() {
   }
   assembleInitialState(sys, poses_, axisymmetric_, atol_, scene_.settings.integrator.rtol,
                        scene_.y0, scene_.settings.integrator.atol);
-  // The quasi-static coordinates are algebraic (runtime/integration/error_weights.h) once
-  // the joints have kept theirs dynamic (addMultibody). Not with stick anchors: their
-  // points' stick and slip follow the quasi-static coordinates' local deformation, and the
-  // error test on those is what locates the transitions (measured without it: the 20-degree
-  // oblique impact's rebound Psi_2 = -0.82 instead of -1.48, a restart 6e-2 off).
-  if (differential_error_test_ && sys.hasQuasiStatic() && !sys.hasAnchors())
-    scene_.settings.integrator.algebraic = sys.quasiStaticComponents();
   checkInitialConstraints(doc(), sys, scene_.y0);
   checkInitialPenetration(doc(), sys, scene_.y0);
   warnFacingAway();

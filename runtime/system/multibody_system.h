@@ -125,10 +125,6 @@ class MultibodySystem : public OdeSystem {
   }
   // True if any body has quasi-static coordinates (runtime/bodies/quasi_static_modes.h).
   bool hasQuasiStatic() const;
-  // Per state component: true for the quasi-static coordinates and their (zero) velocities,
-  // which the projection keeps on a_s(y) = 0: algebraic to the integrator
-  // (IntegratorOptions::algebraic).
-  std::vector<bool> quasiStaticComponents() const;
   // Moves the quasi-static coordinates onto their manifold a_s(y) = 0
   // (runtime/system/quasi_static_projection.cc); false if Newton's iteration did not converge.
   bool projectQuasiStatic(double* y);

@@ -162,19 +162,6 @@ bool MultibodySystem::hasQuasiStatic() const {
   return false;
 }
 
-std::vector<bool> MultibodySystem::quasiStaticComponents() const {
-  std::vector<bool> algebraic(size_, false);
-  for (int b = 0; b < numBodies(); ++b) {
-    const BodyModel& body = *bodies_[b];
-    const QuasiStaticModes& qs = body.quasiStatic();
-    for (int s = 0; s < qs.size(); ++s) {
-      algebraic[pos_offset_[b] + body.numRigidPositions() + qs.index[s]] = true;
-      algebraic[vel_offset_[b] + body.numRigidVelocities() + qs.index[s]] = true;
-    }
-  }
-  return algebraic;
-}
-
 void MultibodySystem::quasiStaticAccelerations(const double* y, const std::vector<int>& first,
                                                std::vector<Eigen::VectorXd>& accel) {
   if (!joints_.empty()) {

@@ -334,59 +334,6 @@ TEST_CASE("scene: quasi-static coordinates in the structured and dense Jacobians
   CHECK((x - ref).norm() <= 1e-8 * ref.norm());
 }
 
-TEST_CASE("scene: integrator.error_test leaves the quasi-static coordinates out", "[scene]") {
-  const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
-  // Default "differential": exactly the quasi-static coordinates and their velocities of
-  // both bodies are algebraic (runtime/integration/error_weights.h).
-  const Scene byDefault = buildScene(parseYamlText(kScene, "scene.yaml"), {}, fakeLoader(sid));
-  const MultibodySystem& sys = *byDefault.system;
-  const std::vector<bool>& algebraic = byDefault.settings.integrator.algebraic;
-  REQUIRE(static_cast<int>(algebraic.size()) == sys.size());
-  int expected = 0;
-  for (int b = 0; b < sys.numBodies(); ++b) {
-    const BodyModel& body = sys.body(b);
-    REQUIRE(!body.quasiStatic().empty());
-    expected += 2 * body.quasiStatic().size();
-    for (int i : body.quasiStatic().index) {
-      CHECK(algebraic[sys.positionOffset(b) + body.numRigidPositions() + i]);
-      CHECK(algebraic[sys.velocityOffset(b) + body.numRigidVelocities() + i]);
-    }
-    for (int r = 0; r < body.numRigidPositions(); ++r) CHECK(!algebraic[sys.positionOffset(b) + r]);
-  }
-  CHECK(std::count(algebraic.begin(), algebraic.end(), true) == expected);
-  // "all": every component in the tests (no algebraic list).
-  const Scene all = buildScene(
-      parseYamlText(test::replaced(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  error_test: all"),
-                    "scene.yaml"),
-      {}, fakeLoader(sid));
-  CHECK(all.settings.integrator.algebraic.empty());
-  // With stick anchors they stay in: the anchors' stick and slip are located through them.
-  const char* kAnchored = R"(name: anchored
-bodies:
-  - name: ball
-    sid: sphere_b.sid.h5
-    position: [0, 0.01001, 0]
-    orientation: [0, 1, 0, 0]
-    velocity: [0, -0.1, 0]
-obstacles:
-  - name: floor
-    plane: {point: [0, 0, 0], normal: [0, 1, 0]}
-contacts:
-  - bodies: [ball, floor]
-    penalty_factor: 1.0e13
-    friction_coefficient: 0.2
-    friction_law: anchored
-integrator: {end_time: 1.0e-4, output_interval: 1.0e-6}
-)";
-  const Scene anchored = buildScene(parseYamlText(kAnchored, "scene.yaml"), {}, fakeLoader(sid));
-  REQUIRE(anchored.system->hasQuasiStatic());
-  REQUIRE(anchored.system->hasAnchors());
-  CHECK(anchored.settings.integrator.algebraic.empty());
-  CHECK_THAT(
-      errorOf(test::replaced(kScene, "  rtol: 1.0e-8", "  rtol: 1.0e-8\n  error_test: some"), sid),
-      Catch::Contains("key 'integrator.error_test'"));
-}
-
 TEST_CASE("scene: quasi-static rule, its keys and its bad input", "[scene]") {
   const FlexibleBodySid sid = flexibleSphere2d(0.01, 12);
   auto withA = [](const std::string& lines) {
