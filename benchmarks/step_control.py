@@ -39,6 +39,8 @@ import h5py
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
+from result_checks import inertial_velocity  # noqa: E402
 SCENES = ["impact2d_h3", "impact3d_h3", "impact2d_designed", "impact3d_coarse",
           "oblique_friction", "backspin_drop", "cradle3_2d", "sphere_on_standing_rod"]
 
@@ -58,28 +60,16 @@ def build_sid(build, body, folder):
     return path
 
 
-def rotation(quaternion):
-    """The rotation matrix A of a unit quaternion (w, x, y, z), the result's orientation."""
-    w, x, y, z = quaternion
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
 def restitution(f):
     """Relative velocity along the initial line of centres, after / before (two free bodies;
-    the result's velocities are in body components: inertial = A v)."""
+    result_checks.inertial_velocity turns the result's body-component velocities)."""
     names = list(f["bodies"].keys())
     if len(names) != 2 or "obstacles:" in f.attrs.get("scene_yaml", ""):
         return None
-
-    def inertial(b, row):
-        return rotation(f[f"bodies/{b}/orientation"][row]) @ f[f"bodies/{b}/velocity"][row]
-
+    v = [inertial_velocity(f, b) for b in names]
     p = [f[f"bodies/{b}/position"][0] for b in names]
     n = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
-    before = (inertial(names[1], 0) - inertial(names[0], 0)) @ n
-    after = (inertial(names[1], -1) - inertial(names[0], -1)) @ n
+    before, after = (v[1][0] - v[0][0]) @ n, (v[1][-1] - v[0][-1]) @ n
     return float(-after / before) if before < 0 else None
 
 

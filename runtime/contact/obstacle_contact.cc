@@ -87,9 +87,9 @@ void ObstacleContact::placeAnchors(const ForceContext& at, double* z, bool outOn
 
 bool ObstacleContact::releaseExceeded() {
   bool any = false;
-  for (char& b : branches_) {
-    if (b != 3) continue;
-    b = 2;  // its direction was kept when it exceeded
+  for (HeldBranch& b : branches_) {
+    if (b != HeldBranch::kStickExceeded) continue;
+    b = HeldBranch::kSlip;  // its direction was kept when it exceeded
     any = true;
   }
   return any;
@@ -101,7 +101,7 @@ void ObstacleContact::settleAnchors(const ForceContext& at, double* z) const {
   const Eigen::VectorXd u =
       at.body(bodyA()).nq() > 0 ? side_.displacements(pa.q) : Eigen::VectorXd();
   for (std::size_t i = 0; i < branches_.size(); ++i) {
-    if (branches_[i] != 2) continue;
+    if (branches_[i] != HeldBranch::kSlip) continue;
     const Eigen::Vector3d x = world(pa, side_.bodyPoint(static_cast<int>(i), u));
     const ObstaclePoint p = obstacle_.nearest(x);
     if (!p.covered || p.gap >= 0.0) continue;  // left the contact: followAnchors places it
@@ -132,26 +132,29 @@ void ObstacleContact::addAnchoredFriction(const Eigen::Vector3d& x, const double
   if (!(point.k > 0.0)) return;  // weight 0 (an axisymmetric body's axis point): no force
   FrictionBranch branch = FrictionBranch::kDecide;
   Eigen::VectorXd e1;
-  char* held = nullptr;
+  HeldBranch* held = nullptr;
   if (hold_branches_) {
     if (branches_.empty()) {
-      branches_.assign(side_.numPoints(), 0);
+      branches_.assign(side_.numPoints(), HeldBranch::kUnset);
       held_directions_.setZero(side_.numPoints() * dim_);
     }
     held = &branches_[point.i];
-    if (*held == 2) {
+    if (*held == HeldBranch::kSlip) {
       branch = FrictionBranch::kFollow;
       e1 = held_directions_.segment(point.i * dim_, dim_);
-    } else if (*held != 0) {
+    } else if (*held != HeldBranch::kUnset) {
       branch = FrictionBranch::kStick;
     }
   }
   point.anchored =
       anchoredFriction(options_.friction, fn, point.k, x.head(dim_) - zi, point.n, branch, &e1);
-  if (held && *held == 0) *held = point.anchored.sticking ? 1 : 2;
-  if (held && (*held == 1 || *held == 3))  // a held spring beyond the limit: to be released
-    *held = point.anchored.d > options_.friction.coefficient * fn / point.k ? 3 : 1;
-  if (held && *held != 1)  // the direction it slips (or will) along
+  if (held && *held == HeldBranch::kUnset)
+    *held = point.anchored.sticking ? HeldBranch::kStick : HeldBranch::kSlip;
+  if (held && (*held == HeldBranch::kStick || *held == HeldBranch::kStickExceeded))
+    *held = point.anchored.d > options_.friction.coefficient * fn / point.k  // to be released
+                ? HeldBranch::kStickExceeded
+                : HeldBranch::kStick;
+  if (held && *held != HeldBranch::kStick)  // the direction it slips (or will) along
     held_directions_.segment(point.i * dim_, dim_) = point.anchored.e1;
   const AnchoredFriction& a = point.anchored;
   f += a.force;

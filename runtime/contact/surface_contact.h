@@ -148,9 +148,11 @@ class SurfaceContact : public ForceElement {
  protected:
   Eigen::VectorXd anchor_rates_;
   bool hold_branches_ = false;
-  // Per collocation point while held: 0 unset, 1 stick, 2 slip (following), 3 stick
-  // exceeded in the last evaluation; the slip directions (d per point).
-  std::vector<char> branches_;
+  // Per collocation point while held: not evaluated yet, sticking, slipping with its anchor
+  // on the slip limit (FrictionBranch::kFollow), sticking with the spring beyond the limit in
+  // the last evaluation (releaseExceeded turns it to slip); the slip directions (d per point).
+  enum class HeldBranch : char { kUnset, kStick, kSlip, kStickExceeded };
+  std::vector<HeldBranch> branches_;
   Eigen::VectorXd held_directions_;
   ContactOptions options_;
   std::string obstacle_name_;

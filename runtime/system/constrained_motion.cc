@@ -264,11 +264,7 @@ bool MultibodySystem::projectState(double* y) {
     }
   }
   if (!projectQuasiStatic(y)) return false;
-  if (hasAnchors()) {
-    const SystemState at(*this, y);
-    for (int c = 0; c < numContacts(); ++c)
-      if (contacts_[c]->numAnchors() > 0) contacts_[c]->followAnchors(at, y + anchor_offset_[c]);
-  }
+  if (hasAnchors()) placeEachPairsAnchors(y, &SurfaceContact::followAnchors);
   return true;
 }
 

@@ -76,10 +76,16 @@ void MultibodySystem::contactForces(const double* y, std::vector<Eigen::VectorXd
     if (e->hasStiffnessTerms()) e->addForces(at, h, out);
 }
 
-void MultibodySystem::placeAnchors(double* y) const {
+void MultibodySystem::placeEachPairsAnchors(double* y,
+                                            void (SurfaceContact::*place)(const ForceContext&,
+                                                                          double*) const) const {
   const SystemState at(*this, y);
   for (int c = 0; c < numContacts(); ++c)
-    if (contacts_[c]->numAnchors() > 0) contacts_[c]->initialAnchors(at, y + anchor_offset_[c]);
+    if (contacts_[c]->numAnchors() > 0) (contacts_[c]->*place)(at, y + anchor_offset_[c]);
+}
+
+void MultibodySystem::placeAnchors(double* y) const {
+  placeEachPairsAnchors(y, &SurfaceContact::initialAnchors);
 }
 
 void MultibodySystem::anchorRates(double* ydot) const {

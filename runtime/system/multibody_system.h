@@ -227,6 +227,10 @@ class MultibodySystem : public OdeSystem {
   void denseAnchorTerms(const double* y, Eigen::Map<Eigen::MatrixXd>& J);
   // The anchors' rates of the last contactForces() into ydot.
   void anchorRates(double* ydot) const;
+  // Calls (pair.*place)(the state y, the pair's anchors in y) for every pair with anchors:
+  // SurfaceContact::initialAnchors, followAnchors or settleAnchors.
+  void placeEachPairsAnchors(double* y, void (SurfaceContact::*place)(const ForceContext&, double*)
+                                            const) const;
   // Adds the generalised forces at y of the force elements without stiffness terms (line
   // forces, evaluated in difference quotients) to h (states: optional diagnostics).
   void addLineForces(const double* y, std::vector<Eigen::VectorXd>& h,

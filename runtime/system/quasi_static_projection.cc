@@ -25,7 +25,6 @@
 
 #include "common/base/error.h"
 #include "runtime/system/multibody_system.h"
-#include "runtime/system/system_state.h"
 
 namespace ffriga {
 
@@ -244,9 +243,7 @@ bool MultibodySystem::projectQuasiStatic(double* y) {
     if (!newton()) return false;
     quasiStaticAccelerations(y, first, accel);  // the branches' state at the result
     if (!held.releaseExceeded()) {
-      const SystemState at(*this, y);
-      for (int c = 0; c < numContacts(); ++c)
-        if (contacts_[c]->numAnchors() > 0) contacts_[c]->settleAnchors(at, y + anchor_offset_[c]);
+      placeEachPairsAnchors(y, &SurfaceContact::settleAnchors);
       return true;
     }
   }
