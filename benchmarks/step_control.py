@@ -40,7 +40,7 @@ import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
-from result_checks import inertial_velocity  # noqa: E402
+from result_checks import restitution  # noqa: E402
 SCENES = ["impact2d_h3", "impact3d_h3", "impact2d_designed", "impact3d_coarse",
           "oblique_friction", "backspin_drop", "cradle3_2d", "sphere_on_standing_rod"]
 
@@ -58,19 +58,6 @@ def build_sid(build, body, folder):
                         os.path.join(ROOT, "configs", "bodies", body + ".yaml"), "-o", path,
                         "-q"], check=True)
     return path
-
-
-def restitution(f):
-    """Relative velocity along the initial line of centres, after / before (two free bodies;
-    result_checks.inertial_velocity turns the result's body-component velocities)."""
-    names = list(f["bodies"].keys())
-    if len(names) != 2 or "obstacles:" in f.attrs.get("scene_yaml", ""):
-        return None
-    v = [inertial_velocity(f, b) for b in names]
-    p = [f[f"bodies/{b}/position"][0] for b in names]
-    n = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
-    before, after = (v[1][0] - v[0][0]) @ n, (v[1][-1] - v[0][-1]) @ n
-    return float(-after / before) if before < 0 else None
 
 
 def scene_without_frames(scene, folder):

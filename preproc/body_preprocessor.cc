@@ -16,6 +16,7 @@
 #include "preproc/geometry/contact_region.h"
 #include "preproc/reduction/craig_bampton.h"
 #include "preproc/reduction/marker_points.h"
+#include "preproc/reduction/pressure_patches.h"
 #include "preproc/reduction/sid_invariants.h"
 #include "preproc/solvers/single_threaded_blas.h"
 
@@ -57,7 +58,9 @@ class BodyPreprocessor {
   void identify();
   void setupGeometry();
   void assembleSystem();
-  std::vector<int> interfacePoints() const;
+  std::vector<int> interfacePoints(std::vector<int>* markerPoints) const;
+  ContactSurface contactSurface(const ContactConfig& c) const;
+  void patchLoads();
   void selectInterface();
   void reduce();
   void computeInvariants();
@@ -88,6 +91,7 @@ FlexibleBodySid BodyPreprocessor::run() {
   setupGeometry();
   assembleSystem();
   selectInterface();
+  patchLoads();
   reduce();
   computeInvariants();
   extractSurfaces();
@@ -148,8 +152,9 @@ void BodyPreprocessor::assembleSystem() {
 
 // The control points of every contact region (their union; each region must select some)
 // and, at interface markers, every control point whose function does not vanish there, so
-// that a joint's load lies in the span of the constraint modes.
-std::vector<int> BodyPreprocessor::interfacePoints() const {
+// that a joint's load lies in the span of the constraint modes; the markers' alone also in
+// markerPoints.
+std::vector<int> BodyPreprocessor::interfacePoints(std::vector<int>* markerPoints) const {
   const SplineSpace& space = *space_;
   std::vector<int> cps;
   for (const ContactConfig& c : config_.contacts) {
@@ -168,7 +173,10 @@ std::vector<int> BodyPreprocessor::interfacePoints() const {
                                                   gauss_face_, Eigen::MatrixXd(0, 0))
                              : evaluateMarker(space, m.name, m.parameters);
     for (std::size_t j = 0; j < mk.functions.size(); ++j)
-      if (mk.values(static_cast<int>(j)) != 0.0) cps.push_back(mk.functions[j]);
+      if (mk.values(static_cast<int>(j)) != 0.0) {
+        cps.push_back(mk.functions[j]);
+        markerPoints->push_back(mk.functions[j]);
+      }
   }
   return cps;  // duplicates (shared by regions and markers) count once below
 }
@@ -186,15 +194,23 @@ void BodyPreprocessor::selectInterface() {
   for (int a = 0; a < space.paramDim(); ++a)
     gauss_face_ = std::max(gauss_face_, space_->basePatch().degree(a) + 2);
   if (options_.method == ReductionMethod::kCraigBampton) {
-    const std::vector<int> cps = interfacePoints();
+    std::vector<int> markerPoints;
+    const std::vector<int> cps = interfacePoints(&markerPoints);
     std::set<int> nodes;
     options_.interface.assign(dofs_->numDofs(), false);
+    options_.interface_retained.assign(dofs_->numDofs(), false);
     for (int k : cps) {
       nodes.insert(dofs_->node(k));
       for (int c = 0; c < s; ++c) {
         if (dofs_->dof(k, c) >= 0) options_.interface[dofs_->dof(k, c)] = true;
       }
     }
+    for (int k : markerPoints) {
+      for (int c = 0; c < s; ++c) {
+        if (dofs_->dof(k, c) >= 0) options_.interface_retained[dofs_->dof(k, c)] = true;
+      }
+    }
+    options_.interface_modes = config_.reduction.interface_modes;
     for (bool b : options_.interface) summary_->interface_dofs += b;
     summary_->interface_control_points = static_cast<int>(nodes.size());
     if (cps.empty()) {
@@ -233,6 +249,35 @@ void BodyPreprocessor::reduce() {
   summary_->arpack_iterations = reduced_.arpack_iterations;
   sid_.normal_modes = reduced_.normal_modes;
   sid_.constraint_modes = reduced_.constraint_modes;
+  sid_.interface_dofs = reduced_.interface_dofs;
+  if (options_.interface_modes > 0 || options_.interface_loads.cols() > 0) {
+    sid_.characteristic_modes = reduced_.characteristic_rigid + reduced_.characteristic_elastic;
+    sid_.patch_modes = reduced_.patch_modes;
+    sid_.interface_compliance_error = reduced_.interface_compliance_error;
+    sid_.characteristic_frequencies_hz =
+        reduced_.characteristic_omega2.cwiseMax(0.0).cwiseSqrt() / (2.0 * kPi);
+    const Eigen::VectorXd& f = sid_.characteristic_frequencies_hz;
+    const int kept = sid_.characteristic_modes;
+    if (log_ && kept > 0) {
+      const std::string dropped =
+          kept < f.size() ? std::string(Str() << ", lowest dropped " << f(kept) << " Hz") : "";
+      const std::string guard =
+          reduced_.interface_compliance_error >= 0.0
+              ? std::string(Str() << "; static compliance missed between the patch radii <= "
+                                  << reduced_.interface_compliance_error)
+              : "";
+      const std::string highest =
+          reduced_.characteristic_elastic > 0
+              ? std::string(Str() << " (highest " << f(kept - 1) << " Hz" << dropped << ")")
+              : "";
+      log_(Str() << "  interface: " << reduced_.interface_dofs << " DOFs -> "
+                 << reduced_.characteristic_rigid << " rigid + " << reduced_.characteristic_elastic
+                 << " elastic characteristic modes" << highest << " + " << reduced_.patch_modes
+                 << " pressure patch modes + "
+                 << reduced_.constraint_modes - kept - reduced_.patch_modes
+                 << " retained marker DOFs" << guard);
+    }
+  }
   sid_.rigid_modes_dropped = reduced_.rigid_dropped;
   const int nq = static_cast<int>(reduced_.omega2.size());
   if (nq > 0 && reduced_.omega2(0) <= 0.0) {
@@ -285,26 +330,77 @@ void BodyPreprocessor::computeInvariants() {
   clock_.done("invariants", Str() << "mass " << sid_.mass << " kg");
 }
 
+// The contact surface of region c (common/splines/contact_surface.h).
+ContactSurface BodyPreprocessor::contactSurface(const ContactConfig& c) const {
+  ParamBox box;
+  for (std::size_t a = 0; a < c.bounds.size(); ++a) {
+    box.lower[a] = c.bounds[a][0];
+    box.upper[a] = c.bounds[a][1];
+  }
+  try {
+    return extractContactSurface(*space_, c.direction, c.upper ? 1 : 0, box, c.name,
+                                 c.gauss ? CollocationRule::kGauss : CollocationRule::kBotella);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(Str() << config_.source.path << ": contact surface '" << c.name << "' (key '"
+                           << c.key << "'): " << e.what());
+  }
+}
+
+// reduction.pressure_patches: the patches' loads on the interface (pressure_patches.h), on
+// the body's one contact region.
+void BodyPreprocessor::patchLoads() {
+  const PressurePatchConfig& pc = config_.reduction.pressure_patches;
+  if (!pc.given) return;
+  const YAML::Node node = config_.source.root["reduction"]["pressure_patches"];
+  if (config_.contacts.size() != 1) {
+    throw inputError(config_.source, node, "reduction.pressure_patches",
+                     Str() << "pressure patches need exactly one contact region, the body has "
+                           << config_.contacts.size());
+  }
+  std::vector<int> index(options_.interface.size(), -1);
+  for (std::size_t j = 0, b = 0; j < index.size(); ++j)
+    if (options_.interface[j]) index[j] = static_cast<int>(b++);
+  PressurePatchOptions po;
+  // A designed body knows its largest contact radius: 20 % beyond it covers the peak (the
+  // penalty's overshoot of Hertz's a is below 1 %) and a faster impact than designed.
+  po.radius = pc.radius > 0.0  ? pc.radius
+              : config_.design ? 1.2 * config_.design->contact_radius
+                               : 0.0;
+  if (!(po.radius > 0.0)) {
+    throw inputError(config_.source, node, "reduction.pressure_patches.radius",
+                     "give the largest patch radius (m): only a designed body (key 'design') "
+                     "has a default");
+  }
+  po.radii = pc.radii;
+  po.degree = pc.degree;
+  po.tangential = pc.tangential;
+  po.centre = pc.centre;
+  try {
+    const PressurePatchLoads loads =
+        pressurePatchLoads(*space_, *dofs_, contactSurface(config_.contacts[0]), axi_, index, po);
+    options_.interface_loads = loads.F;
+    // The guard: normal Hertz patches halfway between the radii, from a quarter of the
+    // largest on (smaller contacts carry less than 1/64 of the peak force, and the finest
+    // elements, not the interface, limit how well they are resolved).
+    po.degree = 0;
+    po.tangential = false;
+    po.radius_offset = 0.5;
+    po.smallest_radius = 0.25 * pc.radius;
+    options_.interface_check_loads =
+        pressurePatchLoads(*space_, *dofs_, contactSurface(config_.contacts[0]), axi_, index, po).F;
+    clock_.done("pressure patches", Str() << loads.F.cols() << " loads, radii up to " << po.radius
+                                          << " m, around (" << loads.centre.transpose() << ") m");
+  } catch (const InputError& e) {
+    throw inputError(config_.source, node, "reduction.pressure_patches", e.what());
+  }
+}
+
 // One contact surface per region (Bezier-extracted, with its collocation points, named by
 // the region, in file order) and the markers, in the body frame.
 void BodyPreprocessor::extractSurfaces() {
   const SplineSpace& space = *space_;
   const int s = space.spaceDim();
-  for (const ContactConfig& c : config_.contacts) {
-    ParamBox box;
-    for (std::size_t a = 0; a < c.bounds.size(); ++a) {
-      box.lower[a] = c.bounds[a][0];
-      box.upper[a] = c.bounds[a][1];
-    }
-    try {
-      sid_.surfaces.push_back(
-          extractContactSurface(*space_, c.direction, c.upper ? 1 : 0, box, c.name,
-                                c.gauss ? CollocationRule::kGauss : CollocationRule::kBotella));
-    } catch (const std::invalid_argument& e) {
-      throw InputError(Str() << config_.source.path << ": contact surface '" << c.name
-                             << "' (key '" << c.key << "'): " << e.what());
-    }
-  }
+  for (const ContactConfig& c : config_.contacts) sid_.surfaces.push_back(contactSurface(c));
   for (const MarkerConfig& m : config_.markers) {
     Marker mk = m.face ? evaluateFaceMarker(space, m.name, m.face_direction, m.face_upper,
                                             gauss_face_, sid_.Phi)

@@ -86,6 +86,19 @@ void printHierarchy(const BodyConfig& c, const HierarchicalSpace& space) {
               space.numFunctions(), s * space.numFunctions(), n.ndof);
 }
 
+// The interface reduction (sid.h), if any: one line, its label printed with label_format.
+void printInterfaceReduction(const FlexibleBodySid& s, const char* label_format) {
+  if (s.characteristic_modes == 0 && s.patch_modes == 0) return;
+  std::printf(label_format, "interface reduction");
+  std::printf(
+      "%d interface DOFs -> %d characteristic modes (rigid ones included) + %d pressure "
+      "patch modes",
+      s.interface_dofs, s.characteristic_modes, s.patch_modes);
+  if (s.interface_compliance_error >= 0.0)
+    std::printf("; static compliance missed <= %.3g", s.interface_compliance_error);
+  std::printf("\n");
+}
+
 void printSidSummary(const FlexibleBodySid& s, const std::string& path) {
   std::printf("SID file %s (%s)\n", path.c_str(), s.created_by.c_str());
   std::printf("  body                 %s (%s, %dD data), from %s\n", s.name.c_str(),
@@ -96,6 +109,7 @@ void printSidSummary(const FlexibleBodySid& s, const std::string& path) {
   std::printf("  nq                   %d = %d normal + %d constraint - %d rigid\n", s.nq(),
               s.normal_modes, s.constraint_modes, s.rigid_modes_dropped);
   std::printf("  interface points     %d\n", s.n_interface_control_points);
+  printInterfaceReduction(s, "  %-20s ");
   if (s.nq() > 0) {
     std::printf("  frequencies          %.6g .. %.6g Hz\n", s.frequencies_hz.minCoeff(),
                 s.frequencies_hz.maxCoeff());
@@ -170,6 +184,7 @@ void printPreprocessSummary(const BodyConfig& config, const FlexibleBodySid& sid
               summary.interface_control_points, summary.interface_dofs);
   std::printf("  %-28s %d = %d normal + %d constraint - %d rigid\n", "nq", sid.nq(),
               sid.normal_modes, sid.constraint_modes, sid.rigid_modes_dropped);
+  printInterfaceReduction(sid, "  %-28s ");
   if (sid.nq() > 0) {
     std::printf("  %-28s %.6g .. %.6g Hz\n", "frequencies", sid.frequencies_hz.minCoeff(),
                 sid.frequencies_hz.maxCoeff());

@@ -127,6 +127,19 @@ struct FlexibleBodySid {
   int normal_modes = 0;         // fixed-interface (CB) or free-free (modal) modes in the basis
   int constraint_modes = 0;     // CB constraint modes (interface DOFs)
   int rigid_modes_dropped = 0;  // zero-frequency directions removed (1 axisymmetric, 6 3D)
+  // Interface reduction (root attributes added within version 3, read where present): the
+  // DOFs on the Craig-Bampton interface and, where the contact regions' constraint modes were
+  // replaced by characteristic constraint modes, how many of those the basis holds (zero and
+  // elastic ones) and how many pressure patch directions (constraint_modes = their sum plus
+  // the interface markers' retained DOFs; 0 and 0: the full interface) with every
+  // eigenfrequency of the regions' condensed interface, Hz (/sid/characteristic_frequencies_hz).
+  int interface_dofs = 0;
+  int characteristic_modes = 0;
+  int patch_modes = 0;  // directions added by pressure patches' static responses
+  // Pressure patches' accuracy guard: the largest share of static compliance the reduced
+  // interface misses for normal patches halfway between the patch radii; -1: not computed.
+  double interface_compliance_error = -1.0;
+  Eigen::VectorXd characteristic_frequencies_hz;
   // Origin of the body frame in the coordinates of the body file's geometry, m (Buckens:
   // the centre of mass; tangent: the frame marker). Control points, markers and surfaces
   // below are in the body frame: x_body = x_geometry - frame_origin.

@@ -290,6 +290,10 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, file, "normal_modes", sid.normal_modes);
   h5::writeAttribute(c, file, "constraint_modes", sid.constraint_modes);
   h5::writeAttribute(c, file, "rigid_modes_dropped", sid.rigid_modes_dropped);
+  h5::writeAttribute(c, file, "interface_dofs", sid.interface_dofs);
+  h5::writeAttribute(c, file, "characteristic_modes", sid.characteristic_modes);
+  h5::writeAttribute(c, file, "patch_modes", sid.patch_modes);
+  h5::writeAttribute(c, file, "interface_compliance_error", sid.interface_compliance_error);
 
   Handle g = h5::createGroup(c, file, "sid");
   h5::writeScalar(c, g, "mass", sid.mass, "kg");
@@ -297,6 +301,9 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeMatrix(c, g, "inertia", sid.inertia, "kg m^2");
   h5::writeVector(c, g, "frame_origin", sid.frame_origin, "m");
   h5::writeVector(c, g, "frequencies_hz", sid.frequencies_hz, "Hz");
+  if (sid.characteristic_modes > 0) {
+    h5::writeVector(c, g, "characteristic_frequencies_hz", sid.characteristic_frequencies_hz, "Hz");
+  }
   h5::writeVector(c, g, "damping_ratio", sid.damping_ratio, "1");
   h5::writeMatrix(c, g, "Me", sid.Me, "1");
   h5::writeMatrix(c, g, "Ke", sid.Ke, "s^-2");
@@ -385,6 +392,16 @@ void readHeader(const Context& c, hid_t file, FlexibleBodySid* sid) {
   sid->normal_modes = h5::readIntAttribute(c, file, "normal_modes");
   sid->constraint_modes = h5::readIntAttribute(c, file, "constraint_modes");
   sid->rigid_modes_dropped = h5::readIntAttribute(c, file, "rigid_modes_dropped");
+  // Added on 2026-12-07 within version 3: read where present.
+  if (h5::hasAttribute(file, "interface_dofs"))
+    sid->interface_dofs = h5::readIntAttribute(c, file, "interface_dofs");
+  if (h5::hasAttribute(file, "characteristic_modes"))
+    sid->characteristic_modes = h5::readIntAttribute(c, file, "characteristic_modes");
+  if (h5::hasAttribute(file, "patch_modes"))
+    sid->patch_modes = h5::readIntAttribute(c, file, "patch_modes");
+  if (h5::hasAttribute(file, "interface_compliance_error"))
+    sid->interface_compliance_error =
+        h5::readDoubleAttribute(c, file, "interface_compliance_error");
 }
 
 // /sid/Cr1 and /sid/J1: the first-order terms in q, stored as [nq, 3, nq] and [nq, 3, 3].
@@ -417,6 +434,9 @@ void readInvariants(const Context& c, hid_t file, FlexibleBodySid* sid) {
   sid->inertia = finiteMatrix(c, g, "/sid", "inertia");
   sid->frame_origin = finiteVector(c, g, "/sid", "frame_origin");
   sid->frequencies_hz = finiteVector(c, g, "/sid", "frequencies_hz");
+  if (sid->characteristic_modes > 0)
+    sid->characteristic_frequencies_hz =
+        finiteVector(c, g, "/sid", "characteristic_frequencies_hz");
   sid->damping_ratio = finiteVector(c, g, "/sid", "damping_ratio");
   sid->Me = finiteMatrix(c, g, "/sid", "Me");
   sid->Ke = finiteMatrix(c, g, "/sid", "Ke");

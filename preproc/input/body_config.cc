@@ -110,6 +110,28 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
     r->method = getKind<ReductionMethod>(doc, node["method"], "reduction.method");
     r->normal_modes = getInt(doc, node["normal_modes"], "reduction.normal_modes");
     r->frame = getKind<FrameKind>(doc, node["frame"], "reduction.frame");
+    for (const char* key : {"interface_modes", "pressure_patches"}) {
+      if (node[key] && r->method != ReductionMethod::kCraigBampton) {
+        throw inputError(doc, node[key], Str() << "reduction." << key,
+                         "reduces a Craig-Bampton interface, but the method is modal");
+      }
+    }
+    if (node["interface_modes"])
+      r->interface_modes = getInt(doc, node["interface_modes"], "reduction.interface_modes");
+    if (const YAML::Node pp = node["pressure_patches"]) {
+      PressurePatchConfig& c = r->pressure_patches;
+      c.given = true;
+      if (pp["radius"])
+        c.radius = getDouble(doc, pp["radius"], "reduction.pressure_patches.radius");
+      if (pp["radii"]) c.radii = getInt(doc, pp["radii"], "reduction.pressure_patches.radii");
+      if (pp["degree"]) c.degree = getInt(doc, pp["degree"], "reduction.pressure_patches.degree");
+      if (pp["tangential"])
+        c.tangential = getBool(doc, pp["tangential"], "reduction.pressure_patches.tangential");
+      for (std::size_t i = 0; pp["centre"] && i < pp["centre"].size(); ++i) {
+        c.centre.push_back(getDouble(doc, pp["centre"][i],
+                                     Str() << "reduction.pressure_patches.centre[" << i << "]"));
+      }
+    }
     if (node["frame_marker"])
       r->frame_marker = getString(doc, node["frame_marker"], "reduction.frame_marker");
     const YAML::Node damping = node["damping"];

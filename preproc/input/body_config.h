@@ -66,6 +66,17 @@ struct DampingBand {
   double ratio = 0.0;
 };
 
+// reduction.pressure_patches (preproc/reduction/pressure_patches.h): pressure patches whose
+// static responses span the contact region's interface.
+struct PressurePatchConfig {
+  bool given = false;
+  double radius = 0.0;  // m, the largest patch; 0: 1.2 times a designed body's a
+  int radii = 8;
+  int degree = 2;
+  bool tangential = true;
+  std::vector<double> centre;  // surface parameters; empty: the default centre
+};
+
 struct ReductionConfig {
   // Defaults as the schema's (tests/schemas/code_defaults_test.cc); they apply to a
   // body file without a `reduction` block.
@@ -74,6 +85,11 @@ struct ReductionConfig {
   // A designed body without reduction.normal_modes (impact_design.h): every fixed-interface
   // mode below this frequency, Hz (normal_modes the first guess); 0: normal_modes as given.
   double mode_cutoff_hz = 0.0;
+  // > 0: the contact regions' constraint modes are replaced by this many elastic
+  // characteristic constraint modes (preproc/reduction/characteristic_constraint_modes.h);
+  // 0: the full Craig-Bampton interface.
+  int interface_modes = 0;
+  PressurePatchConfig pressure_patches;
   FrameKind frame = FrameKind::kBuckens;  // buckens | tangent
   std::string frame_marker;               // tangent frame only
   std::vector<DampingBand> damping;

@@ -286,6 +286,7 @@ Basis craigBamptonBasis(const SparseMatrix& K, const SparseMatrix& M, const Redu
   out->normal_mode_omega2 = modes.values;
   out->normal_modes = nm;
   out->constraint_modes = static_cast<int>(p.boundary.size());
+  out->interface_dofs = out->constraint_modes;
   return assembleBasis(p, modes, X, Kib, Kbb, n, nm);
 }
 
@@ -324,6 +325,103 @@ Basis modalBasis(const SparseMatrix& K, const SparseMatrix& M, const ReductionOp
   return basis;
 }
 
+// The characteristic constraint modes of the interface (characteristic_constraint_modes.h)
+// for the Craig-Bampton reduced matrices Mr (before the frame projection) and Kr; returns the
+// transformation and records what was kept in out.
+Eigen::MatrixXd reduceInterface(const ReductionOptions& o, const Eigen::MatrixXd& Mr,
+                                const Eigen::MatrixXd& Kr, ReducedModel* out) {
+  std::vector<bool> retained;  // per interface DOF, in the basis' (ascending DOF) order
+  for (std::size_t j = 0; j < o.interface.size(); ++j) {
+    if (o.interface[j])
+      retained.push_back(!o.interface_retained.empty() && o.interface_retained[j]);
+  }
+  InterfaceReduction r =
+      characteristicConstraintModes(Mr, Kr, out->normal_modes, retained, o.interface_modes,
+                                    o.interface_loads, o.interface_check_loads);
+  if (r.compliance_error.size() > 0)
+    out->interface_compliance_error = r.compliance_error.maxCoeff();
+  out->characteristic_rigid = r.rigid;
+  out->characteristic_elastic = r.elastic;
+  out->patch_modes = r.patch_modes;
+  out->characteristic_omega2 = std::move(r.omega2);
+  // The rigid ones count as dropped.
+  out->constraint_modes = r.rigid + r.elastic + r.patch_modes + r.retained;
+  return std::move(r.T);
+}
+
+// The frame projection Phi' = Psi Tif - R A of the basis Psi Tif (Tif: no columns for none)
+// with W = R^T M Psi Tif: Buckens A = (R^T M R)^{-1} W, tangent A = (C R)^{-1} C Psi Tif;
+// Mr (the reduced mass of Psi Tif) becomes that of Phi'. Returns A.
+Eigen::MatrixXd projectFrame(const ReductionOptions& o, const Eigen::MatrixXd& MR,
+                             const Eigen::MatrixXd& Psi, const Eigen::MatrixXd& Tif,
+                             const Eigen::MatrixXd& W, Eigen::MatrixXd* Mr) {
+  const Eigen::MatrixXd& R = o.rigid_modes;
+  const Eigen::MatrixXd RMR = R.transpose() * MR;
+  Eigen::MatrixXd A;
+  if (o.frame == FrameKind::kBuckens) {
+    A = RMR.ldlt().solve(W);
+    *Mr -= W.transpose() * A;
+  } else {
+    const Eigen::MatrixXd& C = o.frame_conditions;
+    FFRIGA_CHECK(C.rows() == R.cols() && C.cols() == R.rows(),
+                 "frame conditions " << C.rows() << "x" << C.cols());
+    const Eigen::MatrixXd CR = C * R;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(CR);
+    if (lu.rank() < CR.rows()) {
+      throw InputError(
+          "tangent frame: the frame conditions at the marker do not determine the "
+          "rigid-body motion (marker on a degenerate point?)");
+    }
+    A = Tif.size() > 0 ? lu.solve((C * Psi) * Tif).eval() : lu.solve(C * Psi).eval();
+    *Mr += -A.transpose() * W - W.transpose() * A + A.transpose() * RMR * A;
+  }
+  *Mr = 0.5 * (*Mr + Mr->transpose()).eval();
+  return A;
+}
+
+// The reduced eigenproblem in the range of Mr: returns T with T^T Mr T = E and
+// T^T Kr T = diag(out->omega2), dropping the dependent (rigid) directions (counted in
+// out->rigid_dropped).
+Eigen::MatrixXd reducedEigenvectors(const ReductionOptions& o, Eigen::MatrixXd Mr,
+                                    Eigen::MatrixXd Kr, ReducedModel* out) {
+  const int nr = static_cast<int>(o.rigid_modes.cols());
+  // Equilibrate (unit diagonal): constraint modes of a small interface have a tiny mass
+  // compared with normal modes; scaling keeps the orthonormalisation at round-off level.
+  Eigen::VectorXd scale = Mr.diagonal();
+  for (int j = 0; j < scale.size(); ++j)
+    scale(j) = scale(j) > 0.0 ? 1.0 / std::sqrt(scale(j)) : 1.0;
+  Mr = scale.asDiagonal() * Mr * scale.asDiagonal();
+  Kr = scale.asDiagonal() * Kr * scale.asDiagonal();
+  // Orthonormalise in the range of Mr: the rigid directions have (numerically) zero mass.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> em(Mr);
+  if (em.info() != Eigen::Success) throw ComputeError("reduced mass matrix: eigen solver failed");
+  // The Craig-Bampton basis contains the rigid modes exactly (K r = 0 gives
+  // r_i = -K_ii^{-1} K_ib r_b), so the projection leaves exactly nr dependent directions:
+  // the nr smallest eigenvalues of the equilibrated Mr (round-off, amplified by the
+  // conditioning of K_ii for slender bodies); zero characteristic constraint modes were
+  // left out as rigid already. The modal basis is M-orthogonal to R already. Any further
+  // direction below 1e-12 of the largest is dropped as well.
+  const double mmax = em.eigenvalues().maxCoeff();
+  const int dependent =
+      o.method == ReductionMethod::kCraigBampton ? nr - out->characteristic_rigid : 0;
+  std::vector<int> keep;
+  for (int j = dependent; j < Mr.cols(); ++j) {
+    if (em.eigenvalues()(j) > 1e-12 * mmax) keep.push_back(j);
+  }
+  const int kept = static_cast<int>(keep.size());
+  Eigen::MatrixXd Z(Mr.rows(), kept);
+  for (int j = 0; j < kept; ++j)
+    Z.col(j) = em.eigenvectors().col(keep[j]) / std::sqrt(em.eigenvalues()(keep[j]));
+  out->rigid_dropped = static_cast<int>(Mr.cols()) - kept + out->characteristic_rigid;
+  if (o.method == ReductionMethod::kModal) out->rigid_dropped += nr;
+  Eigen::MatrixXd Kz = Z.transpose() * Kr * Z;
+  Kz = 0.5 * (Kz + Kz.transpose()).eval();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ek(Kz);
+  if (ek.info() != Eigen::Success) throw ComputeError("reduced eigenproblem: solver failed");
+  out->omega2 = ek.eigenvalues();
+  return scale.asDiagonal() * (Z * ek.eigenvectors());
+}
+
 }  // namespace
 
 ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const ReductionOptions& o) {
@@ -335,64 +433,23 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   StepTimer timer(&out);
   const Eigen::MatrixXd& R = o.rigid_modes;
   const Eigen::MatrixXd MR = symmetricProduct(M, R);
-  const Eigen::MatrixXd RMR = R.transpose() * MR;
   Eigen::MatrixXd Mr = transposeTimes(basis.Psi, symmetricProduct(M, basis.Psi));
-  const Eigen::MatrixXd W = MR.transpose() * basis.Psi;  // R^T M Psi
-  Eigen::MatrixXd A;                                     // Phi' = Psi - R A
-  if (o.frame == FrameKind::kBuckens) {
-    A = RMR.ldlt().solve(W);
-    Mr -= W.transpose() * A;
-  } else {
-    const Eigen::MatrixXd& C = o.frame_conditions;
-    FFRIGA_CHECK(C.rows() == R.cols() && C.cols() == n,
-                 "frame conditions " << C.rows() << "x" << C.cols());
-    const Eigen::MatrixXd CR = C * R;
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(CR);
-    if (lu.rank() < CR.rows()) {
-      throw InputError(
-          "tangent frame: the frame conditions at the marker do not determine the "
-          "rigid-body motion (marker on a degenerate point?)");
-    }
-    A = lu.solve(C * basis.Psi);
-    Mr += -A.transpose() * W - W.transpose() * A + A.transpose() * RMR * A;
-  }
-  Mr = 0.5 * (Mr + Mr.transpose()).eval();
+  Eigen::MatrixXd W = MR.transpose() * basis.Psi;  // R^T M Psi
   timer.step("reduced mass matrix");
-  // Equilibrate (unit diagonal): constraint modes of a small interface have a tiny mass
-  // compared with normal modes; scaling keeps the orthonormalisation at round-off level.
-  Eigen::VectorXd scale = Mr.diagonal();
-  for (int j = 0; j < scale.size(); ++j)
-    scale(j) = scale(j) > 0.0 ? 1.0 / std::sqrt(scale(j)) : 1.0;
-  Mr = scale.asDiagonal() * Mr * scale.asDiagonal();
-  basis.Kr = scale.asDiagonal() * basis.Kr * scale.asDiagonal();
-  // Orthonormalise in the range of Mr: the rigid directions have (numerically) zero mass.
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> em(Mr);
-  if (em.info() != Eigen::Success) throw ComputeError("reduced mass matrix: eigen solver failed");
-  // The Craig-Bampton basis contains the rigid modes exactly (K r = 0 gives
-  // r_i = -K_ii^{-1} K_ib r_b), so the projection leaves exactly nr dependent directions:
-  // the nr smallest eigenvalues of the equilibrated Mr (round-off, amplified by the
-  // conditioning of K_ii for slender bodies). The modal basis is M-orthogonal to R already.
-  // Any further direction below 1e-12 of the largest is dropped as well.
-  const double mmax = em.eigenvalues().maxCoeff();
-  const int dependent = o.method == ReductionMethod::kCraigBampton ? static_cast<int>(R.cols()) : 0;
-  std::vector<int> keep;
-  for (int j = dependent; j < Mr.cols(); ++j) {
-    if (em.eigenvalues()(j) > 1e-12 * mmax) keep.push_back(j);
+  // Interface reduction: the basis becomes Psi Tif (Psi itself is only multiplied at the end).
+  Eigen::MatrixXd Tif;
+  if (o.method == ReductionMethod::kCraigBampton &&
+      (o.interface_modes > 0 || o.interface_loads.cols() > 0)) {
+    Tif = reduceInterface(o, Mr, basis.Kr, &out);
+    Mr = (Tif.transpose() * Mr * Tif).eval();
+    basis.Kr = (Tif.transpose() * basis.Kr * Tif).eval();
+    W = (W * Tif).eval();
+    timer.step("characteristic constraint modes");
   }
-  const int kept = static_cast<int>(keep.size());
-  Eigen::MatrixXd Z(Mr.rows(), kept);
-  for (int j = 0; j < kept; ++j)
-    Z.col(j) = em.eigenvectors().col(keep[j]) / std::sqrt(em.eigenvalues()(keep[j]));
-  out.rigid_dropped = static_cast<int>(Mr.cols()) - kept;
-  if (o.method == ReductionMethod::kModal) out.rigid_dropped += static_cast<int>(R.cols());
-  Eigen::MatrixXd Kz = Z.transpose() * basis.Kr * Z;
-  Kz = 0.5 * (Kz + Kz.transpose()).eval();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ek(Kz);
-  if (ek.info() != Eigen::Success) throw ComputeError("reduced eigenproblem: solver failed");
-  const Eigen::MatrixXd T = scale.asDiagonal() * (Z * ek.eigenvectors());
-  out.omega2 = ek.eigenvalues();
-  basis.Kr.resize(0, 0);
-  out.Phi = times(basis.Psi, T);
+  const Eigen::MatrixXd A = projectFrame(o, MR, basis.Psi, Tif, W, &Mr);  // Phi' = Psi - R A
+  timer.step("frame projection");
+  const Eigen::MatrixXd T = reducedEigenvectors(o, std::move(Mr), std::move(basis.Kr), &out);
+  out.Phi = times(basis.Psi, Tif.size() > 0 ? (Tif * T).eval() : T);
   basis.Psi.resize(0, 0);
   out.Phi -= R * (A * T);
   timer.step("reduced eigenproblem and modes");

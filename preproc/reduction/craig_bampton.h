@@ -28,6 +28,7 @@
 
 #include "common/sid/body_kinds.h"
 #include "preproc/assembly/elasticity_assembly.h"
+#include "preproc/reduction/characteristic_constraint_modes.h"
 
 namespace ffriga {
 
@@ -40,6 +41,16 @@ struct ReductionOptions {
   // (doubled until the highest lies above the cutoff).
   double mode_cutoff_hz = 0.0;
   std::vector<bool> interface;       // per DOF: on the Craig-Bampton interface
+  // Craig-Bampton only, > 0: the interface's constraint modes are replaced by this many
+  // elastic characteristic constraint modes (characteristic_constraint_modes.h), except the
+  // DOFs marked in interface_retained (per DOF; empty: none), which keep theirs.
+  int interface_modes = 0;
+  std::vector<bool> interface_retained;
+  // Craig-Bampton only: loads on the interface (interface DOFs in ascending order x P,
+  // pressure_patches.h) whose static responses join the characteristic modes; no columns:
+  // none. With loads, interface_modes may be 0.
+  Eigen::MatrixXd interface_loads;
+  Eigen::MatrixXd interface_check_loads;  // the accuracy guard's (same layout; none: none)
   Eigen::MatrixXd rigid_modes;       // ndof x nr, the rigid-body fields
   Eigen::MatrixXd frame_conditions;  // nr x ndof, C for the tangent frame
 };
@@ -49,7 +60,17 @@ struct ReducedModel {
   Eigen::VectorXd omega2;  // nq, ascending, (rad/s)^2
   int rigid_dropped = 0;   // directions removed as rigid / dependent
   int normal_modes = 0;
-  int constraint_modes = 0;
+  int constraint_modes = 0;  // interface coordinates in the basis (after any reduction)
+  int interface_dofs = 0;    // DOFs on the Craig-Bampton interface
+  // Interface reduction (options.interface_modes > 0): characteristic constraint modes kept
+  // (zero ones, elastic ones) and every eigenvalue of the region's, (rad/s)^2.
+  int characteristic_rigid = 0;
+  int characteristic_elastic = 0;
+  int patch_modes = 0;  // directions from the interface loads' static responses
+  // The accuracy guard: the largest share of static compliance the reduced interface misses
+  // for the check loads (characteristic_constraint_modes.h); -1: not computed.
+  double interface_compliance_error = -1.0;
+  Eigen::VectorXd characteristic_omega2;
   Eigen::VectorXd normal_mode_omega2;  // fixed-interface (CB) or free-free (modal) eigenvalues
   double factor_rcond = 0.0;           // CHOLMOD's estimate for K_ii (CB)
   double factor_nonzeros = 0.0;        // stored entries of K_ii's Cholesky factor (CB)

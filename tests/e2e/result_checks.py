@@ -54,6 +54,19 @@ def inertial_velocity(f, body):
     return np.einsum("nij,nj->ni", rotation(f[f"bodies/{body}/orientation"][:]), v)
 
 
+def restitution(f):
+    """Relative velocity along the initial line of centres, after / before, of a result with
+    two free bodies (None otherwise, or where they do not approach)."""
+    names = list(f["bodies"].keys())
+    if len(names) != 2 or "obstacles:" in f.attrs.get("scene_yaml", ""):
+        return None
+    v = [inertial_velocity(f, b) for b in names]
+    p = [f[f"bodies/{b}/position"][0] for b in names]
+    n = (p[1] - p[0]) / np.linalg.norm(p[1] - p[0])
+    before, after = (v[1][0] - v[0][0]) @ n, (v[1][-1] - v[0][-1]) @ n
+    return float(-after / before) if before < 0 else None
+
+
 def contact_runs(F):
     """(first, last) row indices of each run of rows with F > 0 (a force or a count of
     active points)."""

@@ -99,6 +99,10 @@ TEST_CASE("code defaults: the body's structs agree with body.schema.json", "[sch
   REQUIRE(parseKind(defaultOf<std::string>(kBodySchema, "reduction.frame"), &frame));
   CHECK(frame == r.frame);
   CHECK(r.normal_modes == defaultOf<int>(kBodySchema, "reduction.normal_modes"));
+  const PressurePatchConfig& pp = r.pressure_patches;
+  CHECK(pp.radii == defaultOf<int>(kBodySchema, "reduction.pressure_patches.radii"));
+  CHECK(pp.degree == defaultOf<int>(kBodySchema, "reduction.pressure_patches.degree"));
+  CHECK(pp.tangential == defaultOf<bool>(kBodySchema, "reduction.pressure_patches.tangential"));
   CHECK(ContactConfig().name == defaultOf<std::string>(kBodySchema, "contact.name"));
   CHECK(MarkerConfig().interface == defaultOf<bool>(kBodySchema, "markers[].interface"));
   CHECK(StressLineConfig().points ==

@@ -10,11 +10,12 @@
 #include <catch2/catch.hpp>
 
 #include "common/splines/refinement.h"
-#include "preproc/geometry/contact_region.h"
-#include "preproc/solvers/eigen_solver.h"
-#include "preproc/geometry/geometry_builders.h"
-#include "preproc/reduction/marker_points.h"
 #include "preproc/assembly/rigid_body_modes.h"
+#include "preproc/geometry/contact_region.h"
+#include "preproc/geometry/geometry_builders.h"
+#include "preproc/reduction/characteristic_constraint_modes.h"
+#include "preproc/reduction/marker_points.h"
+#include "preproc/solvers/eigen_solver.h"
 
 using namespace ffriga;
 
@@ -121,6 +122,35 @@ TEST_CASE("breathing frequency converges to Lamb's solution", "[eigen]") {
   CHECK(previous < 1e-5);
 }
 
+namespace {
+
+// The options of a Craig-Bampton reduction of m with the interface of region.
+ReductionOptions regionOptions(const Model& m, const ContactRegion& region, int normal_modes) {
+  ReductionOptions o;
+  o.normal_modes = normal_modes;
+  o.rigid_modes = rigidBodyModes(*m.space, *m.dofs, m.axi);
+  o.interface.assign(m.dofs->numDofs(), false);
+  for (int k : interfaceControlPoints(*m.space, region))
+    for (int c = 0; c < m.dofs->components(); ++c)
+      if (m.dofs->dof(k, c) >= 0) o.interface[m.dofs->dof(k, c)] = true;
+  return o;
+}
+
+// Phi^T M Phi = E, Phi^T K Phi = diag(omega^2) (Eq. 13) and no rigid content (Buckens:
+// R^T M Phi = 0, i.e. int rho u dV = 0 etc.), to round-off of sums over all DOFs.
+void checkOrthonormalModes(const Model& m, const ReductionOptions& o, const ReducedModel& red) {
+  const int nq = static_cast<int>(red.Phi.cols());
+  const Eigen::MatrixXd Me = red.Phi.transpose() * symmetricProduct(m.sys.M, red.Phi);
+  const Eigen::MatrixXd Ke = red.Phi.transpose() * symmetricProduct(m.sys.K, red.Phi);
+  CHECK((Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() < 1e-10);
+  const Eigen::MatrixXd off = Ke - Eigen::MatrixXd(red.omega2.asDiagonal());
+  CHECK(off.cwiseAbs().maxCoeff() < 1e-10 * red.omega2.maxCoeff());
+  const Eigen::MatrixXd RMPhi = o.rigid_modes.transpose() * symmetricProduct(m.sys.M, red.Phi);
+  CHECK(RMPhi.cwiseAbs().maxCoeff() < 1e-10 * std::sqrt(o.rigid_modes.squaredNorm()));
+}
+
+}  // namespace
+
 TEST_CASE("Craig-Bampton reproduces the lowest free-free frequencies", "[reduction]") {
   for (bool axi : {true, false}) {
     const Model m = axi ? sphereModel(true, 2, 7) : sphereModel(false, 1, 2);
@@ -132,30 +162,14 @@ TEST_CASE("Craig-Bampton reproduces the lowest free-free frequencies", "[reducti
     } else {
       region.bounds = {{0.25, 0.75}, {0.0, 0.25}};
     }
-    const std::vector<int> cps = interfaceControlPoints(*m.space, region);
-    REQUIRE(!cps.empty());
-    ReductionOptions o;
+    REQUIRE(!interfaceControlPoints(*m.space, region).empty());
     // The paper uses 10 (2D) and 50 (3D) normal modes. A free body whose interface is a
     // small surface patch needs more fixed-interface modes for its lowest free-free modes:
     // measured errors of the lowest mode 0.18 % / 0.06 % / 0.03 % with 10 / 20 / 30 modes (2D).
-    o.normal_modes = axi ? 20 : 60;
-    o.rigid_modes = rigidBodyModes(*m.space, *m.dofs, axi);
-    o.interface.assign(m.dofs->numDofs(), false);
-    for (int k : cps)
-      for (int c = 0; c < m.dofs->components(); ++c)
-        if (m.dofs->dof(k, c) >= 0) o.interface[m.dofs->dof(k, c)] = true;
+    const ReductionOptions o = regionOptions(m, region, axi ? 20 : 60);
     const ReducedModel red = reduceBody(m.sys.K, m.sys.M, o);
     CHECK(red.rigid_dropped == (axi ? 1 : 6));
-    const int nq = static_cast<int>(red.Phi.cols());
-    const Eigen::MatrixXd Me = red.Phi.transpose() * symmetricProduct(m.sys.M, red.Phi);
-    const Eigen::MatrixXd Ke = red.Phi.transpose() * symmetricProduct(m.sys.K, red.Phi);
-    // Me = E and Ke = diag(omega^2) to round-off of sums over all DOFs.
-    CHECK((Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() < 1e-10);
-    const Eigen::MatrixXd off = Ke - Eigen::MatrixXd(red.omega2.asDiagonal());
-    CHECK(off.cwiseAbs().maxCoeff() < 1e-10 * red.omega2.maxCoeff());
-    // Buckens: no rigid content (int rho u dV = 0 etc.): R^T M Phi = 0.
-    const Eigen::MatrixXd RMPhi = o.rigid_modes.transpose() * symmetricProduct(m.sys.M, red.Phi);
-    CHECK(RMPhi.cwiseAbs().maxCoeff() < 1e-10 * std::sqrt(o.rigid_modes.squaredNorm()));
+    checkOrthonormalModes(m, o, red);
     // Free-free reference.
     EigenOptions eo;
     eo.count = 6 + (axi ? 1 : 6);
@@ -203,4 +217,103 @@ TEST_CASE("modal reduction keeps the free-free frequencies; tangent frame", "[re
   const int nq = static_cast<int>(tan.Phi.cols());
   const Eigen::MatrixXd Me = tan.Phi.transpose() * symmetricProduct(m.sys.M, tan.Phi);
   CHECK((Me - Eigen::MatrixXd::Identity(nq, nq)).cwiseAbs().maxCoeff() < 1e-10);
+}
+
+
+// Characteristic constraint modes (characteristic_constraint_modes.h) span a subspace of the
+// full Craig-Bampton basis: all of them reproduce it, fewer give Rayleigh-Ritz upper bounds
+// of its frequencies, and the subspaces of growing counts are nested (frequencies fall).
+TEST_CASE("characteristic constraint modes: all reproduce the full interface, fewer bound it",
+          "[reduction]") {
+  for (bool axi : {true, false}) {
+    const Model m = axi ? sphereModel(true, 2, 7) : sphereModel(false, 1, 2);
+    const ContactRegion region = axi ? ContactRegion{1, true, {{0.0, 0.25}}}
+                                     : ContactRegion{1, true, {{0.25, 0.75}, {0.0, 0.25}}};
+    const int nm = axi ? 10 : 20, nr = axi ? 1 : 6;
+    ReductionOptions o = regionOptions(m, region, nm);
+    const ReducedModel full = reduceBody(m.sys.K, m.sys.M, o);
+    const int nb = full.interface_dofs;
+    REQUIRE(nb > (axi ? 10 : 30));
+    INFO("axi " << axi << ", " << nb << " interface DOFs");
+    o.interface_modes = nb;  // more than the region has elastic ones: all are kept
+    const ReducedModel all = reduceBody(m.sys.K, m.sys.M, o);
+    CHECK(all.characteristic_rigid == nr);
+    CHECK(all.characteristic_elastic == nb - nr);
+    REQUIRE(all.omega2.size() == full.omega2.size());
+    for (int j = 0; j < full.omega2.size(); ++j)  // the same space: round-off of the solves
+      CHECK(all.omega2(j) == Approx(full.omega2(j)).epsilon(1e-8));
+    Eigen::VectorXd previous = all.omega2;
+    for (int count : axi ? std::vector<int>{6, 3, 1} : std::vector<int>{24, 12, 4}) {
+      o.interface_modes = count;
+      const ReducedModel red = reduceBody(m.sys.K, m.sys.M, o);
+      INFO(count << " elastic characteristic modes asked for, " << red.characteristic_elastic
+                 << " kept");
+      // A cluster of equal frequencies is kept whole (the 3D region is symmetric).
+      CHECK(red.characteristic_elastic >= count);
+      CHECK(red.characteristic_elastic < count + 4);
+      CHECK(red.rigid_dropped == nr);
+      CHECK(red.omega2.size() == nm + red.characteristic_elastic);
+      CHECK(red.constraint_modes == nr + red.characteristic_elastic);
+      checkOrthonormalModes(m, o, red);
+      for (int j = 0; j < red.omega2.size(); ++j) {
+        CHECK(red.omega2(j) >= full.omega2(j) * (1 - 1e-9));
+        CHECK(red.omega2(j) >= previous(j) * (1 - 1e-9));
+      }
+      previous = red.omega2;
+    }
+  }
+}
+
+// Interface DOFs of a marker keep their physical constraint modes: the transformation is the
+// identity on them, the characteristic modes vanish there, and every rigid motion of the
+// interface stays in the reduced space (so the frame projection drops exactly nr directions).
+TEST_CASE("characteristic constraint modes keep retained interface DOFs exact", "[reduction]") {
+  const Model m = sphereModel(false, 1, 2);
+  const ContactRegion region{1, true, {{0.25, 0.75}, {0.0, 0.25}}};
+  ReductionOptions o = regionOptions(m, region, 10);
+  const ReducedModel full = reduceBody(m.sys.K, m.sys.M, o);
+  // Retain the DOFs of the first three interface control points (a "marker").
+  o.interface_retained.assign(m.dofs->numDofs(), false);
+  std::vector<bool> retained;
+  for (int j = 0, seen = 0; j < m.dofs->numDofs(); ++j) {
+    if (!o.interface[j]) continue;
+    retained.push_back(seen++ < 9);
+    o.interface_retained[j] = retained.back();
+  }
+  o.interface_modes = 8;
+  const ReducedModel red = reduceBody(m.sys.K, m.sys.M, o);
+  CHECK(red.rigid_dropped == 6);
+  CHECK(red.constraint_modes == red.characteristic_rigid + red.characteristic_elastic + 9);
+  checkOrthonormalModes(m, o, red);
+  for (int j = 0; j < red.omega2.size(); ++j) CHECK(red.omega2(j) >= full.omega2(j) * (1 - 1e-9));
+  // The transformation itself, on the Craig-Bampton reduced matrices of a small problem:
+  // random SPD interface blocks with a null space of two "rigid" motions.
+  const int nm = 2, nb = static_cast<int>(retained.size());
+  Eigen::MatrixXd N = Eigen::MatrixXd::Random(nb, 2);  // the rigid interface motions
+  Eigen::MatrixXd B = Eigen::MatrixXd::Random(nb, nb);
+  const Eigen::MatrixXd P =
+      Eigen::MatrixXd::Identity(nb, nb) - N * (N.transpose() * N).ldlt().solve(N.transpose());
+  Eigen::MatrixXd Kr = Eigen::MatrixXd::Zero(nm + nb, nm + nb), Mr = Kr;
+  Kr.topLeftCorner(nm, nm) = Eigen::Vector2d(1.0, 2.0).asDiagonal();
+  Kr.bottomRightCorner(nb, nb) = P * (B * B.transpose()) * P;  // K_c N = 0
+  const Eigen::MatrixXd C = Eigen::MatrixXd::Random(nm + nb, nm + nb);
+  Mr = C * C.transpose() + (nm + nb) * Eigen::MatrixXd::Identity(nm + nb, nm + nb);
+  const InterfaceReduction ir = characteristicConstraintModes(Mr, Kr, nm, retained, 5);
+  REQUIRE(ir.retained == 9);
+  // Nine fixed DOFs leave the two null directions no room in the region block (K_cc is
+  // positive definite): no zero modes, so the rigid motions must come from the static part.
+  REQUIRE(ir.rigid == 0);
+  const int cols = static_cast<int>(ir.T.cols());
+  CHECK(cols == nm + ir.elastic + 9);
+  for (int k = 0, m_ = 0; k < nb; ++k) {
+    if (!retained[k]) continue;
+    for (int j = 0; j < cols; ++j) CHECK(ir.T(nm + k, j) == (j == cols - 9 + m_ ? 1.0 : 0.0));
+    ++m_;
+  }
+  // Each rigid motion is T z for some z (least squares residual at round-off).
+  const Eigen::MatrixXd Tb = ir.T.bottomRows(nb);
+  for (int r = 0; r < 2; ++r) {
+    const Eigen::VectorXd z = Tb.colPivHouseholderQr().solve(N.col(r));
+    CHECK((Tb * z - N.col(r)).norm() < 1e-9 * N.col(r).norm());
+  }
 }
