@@ -271,8 +271,8 @@ void readBodyDescription(const Context& c, hid_t file, SidContent content, Flexi
   }
 }
 
-void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
-  // Root attributes: the fixed contract for tools.
+// Root attributes: the fixed contract for tools.
+void writeRootAttributes(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, file, "format", std::string(kSidFormat));
   h5::writeAttribute(c, file, "format_version", kSidFormatVersion);
   h5::writeAttribute(c, file, "created_by", sid.created_by);
@@ -294,7 +294,10 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeAttribute(c, file, "characteristic_modes", sid.characteristic_modes);
   h5::writeAttribute(c, file, "patch_modes", sid.patch_modes);
   h5::writeAttribute(c, file, "interface_compliance_error", sid.interface_compliance_error);
+}
 
+void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
+  writeRootAttributes(c, file, sid);
   Handle g = h5::createGroup(c, file, "sid");
   h5::writeScalar(c, g, "mass", sid.mass, "kg");
   h5::writeVector(c, g, "first_moment", sid.first_moment, "kg m");

@@ -59,6 +59,28 @@ std::vector<std::pair<int, int>> moments(int degree, bool axisymmetric) {
   return m;
 }
 
+// Adds the generalized forces of the traction p dir over the collocation weight `weight`
+// (m^2; N per unit pressure) at a point of element e with basis values R (row 0) to the
+// interface DOFs' column F.
+void addPointLoad(const ExtractedSurface& es, int e, const Eigen::MatrixXd& R, const DofMap& dofs,
+                  const std::vector<int>& interface_index, double weight, double p,
+                  const Eigen::VectorXd& dir, Eigen::Ref<Eigen::VectorXd> F) {
+  for (int f = 0; f < es.numFunctions(e); ++f) {
+    const int cp = es.functions(e)[f];
+    for (int c = 0; c < dir.size(); ++c) {
+      const int dof = dofs.dof(cp, c);
+      const double load = weight * R(0, f) * p * dir(c);
+      if (dof < 0 || load == 0.0) continue;
+      if (interface_index[dof] < 0) {
+        throw InputError(Str() << "pressure patches: contact surface '" << es.surface().name
+                               << "' loads control point " << cp
+                               << ", which is not on the Craig-Bampton interface");
+      }
+      F(interface_index[dof]) += load;
+    }
+  }
+}
+
 }  // namespace
 
 PressurePatchLoads pressurePatchLoads(const SplineSpace& space, const DofMap& dofs,
@@ -83,7 +105,6 @@ PressurePatchLoads pressurePatchLoads(const SplineSpace& space, const DofMap& do
   if (o.tangential && es.dim() == 2) tangents.push_back(frame.t2);
   const int directions = 1 + static_cast<int>(tangents.size());
   const std::vector<std::pair<int, int>> mom = moments(o.degree, axisymmetric);
-  const int s = static_cast<int>(points.cols());
   const int nb = [&] {
     int n = 0;
     for (int i : interface_index) n += i >= 0;
@@ -122,22 +143,7 @@ PressurePatchLoads pressurePatchLoads(const SplineSpace& space, const DofMap& do
           // Normal tractions follow the local normal; tangential ones the centre's frame.
           const Eigen::VectorXd& dir = d == 0 ? normal : tangents[d - 1];
           const int col = k * per_radius + static_cast<int>(m) * directions + d;
-          for (int f = 0; f < es.numFunctions(e); ++f) {
-            const int cp = es.functions(e)[f];
-            for (int c = 0; c < s; ++c) {
-              const int dof = dofs.dof(cp, c);
-              if (dof < 0) continue;
-              const double load = weight * R(0, f) * p * dir(c);
-              if (load == 0.0) continue;
-              const int b = interface_index[dof];
-              if (b < 0) {
-                throw InputError(Str() << "pressure patches: contact surface '" << surface.name
-                                       << "' loads control point " << cp
-                                       << ", which is not on the Craig-Bampton interface");
-              }
-              out.F(b, col) += load;
-            }
-          }
+          addPointLoad(es, e, R, dofs, interface_index, weight, p, dir, out.F.col(col));
         }
       }
     }
