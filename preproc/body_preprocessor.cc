@@ -26,6 +26,19 @@ namespace {
 
 const double kPi = std::acos(-1.0);
 
+// The columns of the blocks one after the other (all with the same rows).
+Eigen::MatrixXd sideBySide(const std::vector<Eigen::MatrixXd>& blocks) {
+  Eigen::Index cols = 0;
+  for (const Eigen::MatrixXd& b : blocks) cols += b.cols();
+  Eigen::MatrixXd out(blocks.empty() ? 0 : blocks.front().rows(), cols);
+  Eigen::Index j = 0;
+  for (const Eigen::MatrixXd& b : blocks) {
+    out.middleCols(j, b.cols()) = b;
+    j += b.cols();
+  }
+  return out;
+}
+
 class StageClock {
  public:
   StageClock(FlexibleBodySid* sid, const std::function<void(const std::string&)>& log)
@@ -346,16 +359,17 @@ ContactSurface BodyPreprocessor::contactSurface(const ContactConfig& c) const {
   }
 }
 
-// reduction.pressure_patches: the patches' loads on the interface (pressure_patches.h), on
-// the body's one contact region.
+// reduction.pressure_patches: the patches' loads on the interface (pressure_patches.h), for
+// every contact region around its own centre, side by side, and the accuracy guard's.
 void BodyPreprocessor::patchLoads() {
   const PressurePatchConfig& pc = config_.reduction.pressure_patches;
   if (!pc.given) return;
   const YAML::Node node = config_.source.root["reduction"]["pressure_patches"];
-  if (config_.contacts.size() != 1) {
-    throw inputError(config_.source, node, "reduction.pressure_patches",
-                     Str() << "pressure patches need exactly one contact region, the body has "
-                           << config_.contacts.size());
+  if (!pc.centre.empty() && config_.contacts.size() != 1) {
+    throw inputError(config_.source, node["centre"], "reduction.pressure_patches.centre",
+                     Str() << "a centre names a point of one contact region, the body has "
+                           << config_.contacts.size() << " (without it each region's patches "
+                           << "centre on the region)");
   }
   std::vector<int> index(options_.interface.size(), -1);
   for (std::size_t j = 0, b = 0; j < index.size(); ++j)
@@ -375,24 +389,33 @@ void BodyPreprocessor::patchLoads() {
   po.degree = pc.degree;
   po.tangential = pc.tangential;
   po.centre = pc.centre;
-  try {
-    const PressurePatchLoads loads =
-        pressurePatchLoads(*space_, *dofs_, contactSurface(config_.contacts[0]), axi_, index, po);
-    options_.interface_loads = loads.F;
-    // The guard: normal Hertz patches halfway between the radii, from a quarter of the
-    // largest on (smaller contacts carry less than 1/64 of the peak force, and the finest
-    // elements, not the interface, limit how well they are resolved).
-    po.degree = 0;
-    po.tangential = false;
-    po.radius_offset = 0.5;
-    po.smallest_radius = 0.25 * pc.radius;
-    options_.interface_check_loads =
-        pressurePatchLoads(*space_, *dofs_, contactSurface(config_.contacts[0]), axi_, index, po).F;
-    clock_.done("pressure patches", Str() << loads.F.cols() << " loads, radii up to " << po.radius
-                                          << " m, around (" << loads.centre.transpose() << ") m");
-  } catch (const InputError& e) {
-    throw inputError(config_.source, node, "reduction.pressure_patches", e.what());
+  // The guard: normal Hertz patches halfway between the radii, from a quarter of the largest
+  // on (smaller contacts carry less than 1/64 of the peak force, and the finest elements,
+  // not the interface, limit how well they are resolved).
+  PressurePatchOptions guard = po;
+  guard.degree = 0;
+  guard.tangential = false;
+  guard.radius_offset = 0.5;
+  guard.smallest_radius = 0.25 * po.radius;
+  std::vector<Eigen::MatrixXd> loads, checks;
+  Str centres;
+  for (const ContactConfig& c : config_.contacts) {
+    try {
+      const ContactSurface surface = contactSurface(c);
+      const PressurePatchLoads region =
+          pressurePatchLoads(*space_, *dofs_, surface, axi_, index, po);
+      loads.push_back(region.F);
+      centres << " " << c.name << " (" << region.centre.transpose() << ") m";
+      checks.push_back(pressurePatchLoads(*space_, *dofs_, surface, axi_, index, guard).F);
+    } catch (const InputError& e) {
+      throw inputError(config_.source, node, "reduction.pressure_patches",
+                       Str() << "region '" << c.name << "': " << e.what());
+    }
   }
+  options_.interface_loads = sideBySide(loads);
+  options_.interface_check_loads = sideBySide(checks);
+  clock_.done("pressure patches", Str() << options_.interface_loads.cols() << " loads, radii up to "
+                                        << po.radius << " m, around" << centres.str());
 }
 
 // One contact surface per region (Bezier-extracted, with its collocation points, named by

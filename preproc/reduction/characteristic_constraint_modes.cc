@@ -43,10 +43,12 @@ int modesKept(const Eigen::VectorXd& lambda, int count, int* rigid) {
 }
 
 // The columns of Q made M-orthonormal (Q^T M Q = E): scaled to unit M-norm, then directions
-// whose Gram eigenvalue lies below kDependent of the largest dropped (nearly parallel static
-// responses of neighbouring patch radii, or of moments the collocation points cannot tell
-// apart on the smallest patches).
-constexpr double kDependent = 1e-10;
+// whose Gram eigenvalue lies below kDependent dropped: combinations of unit columns shorter
+// than 1e-6 (nearly parallel static responses of neighbouring patch radii, or moments the
+// collocation points cannot tell apart on the smallest patches), still 1e4 above the
+// round-off of the Gram matrix (~1e-16 times the columns). An absolute bound: what one
+// region keeps does not depend on the other regions' columns.
+constexpr double kDependent = 1e-12;
 
 Eigen::MatrixXd orthonormalColumns(Eigen::MatrixXd Q, const Eigen::MatrixXd& M) {
   // Unit M-norm columns first: static responses are metres per newton, modes are not.
@@ -59,10 +61,9 @@ Eigen::MatrixXd orthonormalColumns(Eigen::MatrixXd Q, const Eigen::MatrixXd& M) 
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(G);
   if (eig.info() != Eigen::Success)
     throw ComputeError("interface reduction: orthonormalising the pressure patch responses failed");
-  const double top = eig.eigenvalues().maxCoeff();
   std::vector<int> keep;
   for (int j = static_cast<int>(G.rows()) - 1; j >= 0; --j)  // the largest first
-    if (eig.eigenvalues()(j) > kDependent * top) keep.push_back(j);
+    if (eig.eigenvalues()(j) > kDependent) keep.push_back(j);
   Eigen::MatrixXd out(Q.rows(), keep.size());
   for (std::size_t j = 0; j < keep.size(); ++j)
     out.col(j) = Q * eig.eigenvectors().col(keep[j]) / std::sqrt(eig.eigenvalues()(keep[j]));

@@ -132,7 +132,8 @@ TEST_CASE("pressure patches: the reduced interface keeps their static compliance
       pressurePatchLoads(f.space, f.dofs, f.surface, true, f.interface_index, between).F;
   const ReducedModel eight = reduceBody(f.system.K, f.system.M, ro);
   INFO("8 radii: compliance missed " << eight.interface_compliance_error);
-  CHECK(eight.interface_compliance_error >= 0.0);
+  // 1 - c_Q / c >= 0 up to the round-off of the two compliances (measured -8e-15).
+  CHECK(eight.interface_compliance_error >= -1e-12);
   CHECK(eight.interface_compliance_error < 1e-2);
   // Fewer radii: a smaller basis misses more of the same checks (nested by Rayleigh-Ritz
   // only where the bases are nested: 4 radii are every other one of 8).
