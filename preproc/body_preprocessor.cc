@@ -263,7 +263,7 @@ void BodyPreprocessor::reduce() {
   sid_.normal_modes = reduced_.normal_modes;
   sid_.constraint_modes = reduced_.constraint_modes;
   sid_.interface_dofs = reduced_.interface_dofs;
-  if (options_.interface_modes > 0 || options_.interface_loads.cols() > 0) {
+  if (options_.reducesInterface()) {
     sid_.characteristic_modes = reduced_.characteristic_rigid + reduced_.characteristic_elastic;
     sid_.patch_modes = reduced_.patch_modes;
     sid_.interface_compliance_error = reduced_.interface_compliance_error;
@@ -286,8 +286,7 @@ void BodyPreprocessor::reduce() {
       log_(Str() << "  interface: " << reduced_.interface_dofs << " DOFs -> "
                  << reduced_.characteristic_rigid << " rigid + " << reduced_.characteristic_elastic
                  << " elastic characteristic modes" << highest << " + " << reduced_.patch_modes
-                 << " pressure patch modes + "
-                 << reduced_.constraint_modes - kept - reduced_.patch_modes
+                 << " pressure patch modes + " << reduced_.interface_retained
                  << " retained marker DOFs" << guard);
     }
   }

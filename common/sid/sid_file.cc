@@ -304,9 +304,8 @@ void writeAll(const Context& c, hid_t file, const FlexibleBodySid& sid) {
   h5::writeMatrix(c, g, "inertia", sid.inertia, "kg m^2");
   h5::writeVector(c, g, "frame_origin", sid.frame_origin, "m");
   h5::writeVector(c, g, "frequencies_hz", sid.frequencies_hz, "Hz");
-  if (sid.characteristic_modes > 0) {
+  if (sid.characteristic_frequencies_hz.size() > 0)
     h5::writeVector(c, g, "characteristic_frequencies_hz", sid.characteristic_frequencies_hz, "Hz");
-  }
   h5::writeVector(c, g, "damping_ratio", sid.damping_ratio, "1");
   h5::writeMatrix(c, g, "Me", sid.Me, "1");
   h5::writeMatrix(c, g, "Ke", sid.Ke, "s^-2");
@@ -395,13 +394,13 @@ void readHeader(const Context& c, hid_t file, FlexibleBodySid* sid) {
   sid->normal_modes = h5::readIntAttribute(c, file, "normal_modes");
   sid->constraint_modes = h5::readIntAttribute(c, file, "constraint_modes");
   sid->rigid_modes_dropped = h5::readIntAttribute(c, file, "rigid_modes_dropped");
-  // Added on 2026-12-07 within version 3: read where present.
-  if (h5::hasAttribute(file, "interface_dofs"))
-    sid->interface_dofs = h5::readIntAttribute(c, file, "interface_dofs");
-  if (h5::hasAttribute(file, "characteristic_modes"))
-    sid->characteristic_modes = h5::readIntAttribute(c, file, "characteristic_modes");
-  if (h5::hasAttribute(file, "patch_modes"))
-    sid->patch_modes = h5::readIntAttribute(c, file, "patch_modes");
+  // Added on 2026-12-07 within version 3: read where present (else sid.h's defaults).
+  const auto optionalInt = [&](const char* name, int* out) {
+    if (h5::hasAttribute(file, name)) *out = h5::readIntAttribute(c, file, name);
+  };
+  optionalInt("interface_dofs", &sid->interface_dofs);
+  optionalInt("characteristic_modes", &sid->characteristic_modes);
+  optionalInt("patch_modes", &sid->patch_modes);
   if (h5::hasAttribute(file, "interface_compliance_error"))
     sid->interface_compliance_error =
         h5::readDoubleAttribute(c, file, "interface_compliance_error");
@@ -437,7 +436,7 @@ void readInvariants(const Context& c, hid_t file, FlexibleBodySid* sid) {
   sid->inertia = finiteMatrix(c, g, "/sid", "inertia");
   sid->frame_origin = finiteVector(c, g, "/sid", "frame_origin");
   sid->frequencies_hz = finiteVector(c, g, "/sid", "frequencies_hz");
-  if (sid->characteristic_modes > 0)
+  if (h5::exists(g, "characteristic_frequencies_hz"))  // optional (sid.h)
     sid->characteristic_frequencies_hz =
         finiteVector(c, g, "/sid", "characteristic_frequencies_hz");
   sid->damping_ratio = finiteVector(c, g, "/sid", "damping_ratio");

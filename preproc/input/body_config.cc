@@ -123,10 +123,9 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
       c.given = true;
       if (pp["radius"])
         c.radius = getDouble(doc, pp["radius"], "reduction.pressure_patches.radius");
-      if (pp["radii"]) c.radii = getInt(doc, pp["radii"], "reduction.pressure_patches.radii");
-      if (pp["degree"]) c.degree = getInt(doc, pp["degree"], "reduction.pressure_patches.degree");
-      if (pp["tangential"])
-        c.tangential = getBool(doc, pp["tangential"], "reduction.pressure_patches.tangential");
+      c.radii = getInt(doc, pp["radii"], "reduction.pressure_patches.radii");  // schema defaults
+      c.degree = getInt(doc, pp["degree"], "reduction.pressure_patches.degree");
+      c.tangential = getBool(doc, pp["tangential"], "reduction.pressure_patches.tangential");
       for (std::size_t i = 0; pp["centre"] && i < pp["centre"].size(); ++i) {
         c.centre.push_back(getDouble(doc, pp["centre"][i],
                                      Str() << "reduction.pressure_patches.centre[" << i << "]"));

@@ -105,9 +105,9 @@ InterfaceReduction characteristicConstraintModes(const Eigen::MatrixXd& Mr,
   InterfaceReduction out;
   out.retained = nk;
   Eigen::MatrixXd V;  // nc x nc, M_cc-orthonormal eigenvectors, ascending
-  const Eigen::MatrixXd Mcc = block(Mr, region, region);
+  const Eigen::MatrixXd Mcc = block(Mr, region, region), Kcc = block(Kr, region, region);
   if (nc > 0) {
-    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(block(Kr, region, region), Mcc,
+    Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(Kcc, Mcc,
                                                                   Eigen::ComputeEigenvectors);
     if (eig.info() != Eigen::Success) {
       throw ComputeError(
@@ -133,7 +133,7 @@ InterfaceReduction characteristicConstraintModes(const Eigen::MatrixXd& Mr,
     const Eigen::MatrixXd G = regionRows(check_loads, region, nm);
     const Eigen::MatrixXd U = staticResponses(V, out.omega2, out.rigid, G);
     const Eigen::MatrixXd QtG = Q.transpose() * G;
-    const Eigen::MatrixXd KQ = Q.transpose() * block(Kr, region, region) * Q;
+    const Eigen::MatrixXd KQ = Q.transpose() * Kcc * Q;
     const Eigen::MatrixXd UQ = KQ.ldlt().solve(QtG);
     out.compliance_error.resize(G.cols());
     for (int i = 0; i < G.cols(); ++i) {
@@ -150,7 +150,8 @@ InterfaceReduction characteristicConstraintModes(const Eigen::MatrixXd& Mr,
     for (int i = 0; i < nc; ++i) out.T(region[i], nm + j) = Q(i, j);
   if (nk > 0 && nc > 0) {
     // The region's static response to a unit displacement of each retained DOF, through the
-    // elastic part of the spectrum (its zero part is spanned by the kept zero modes).
+    // elastic part of the spectrum (a zero-mode part would be a rigid motion of the body,
+    // which the frame projection removes: header comment).
     const Eigen::MatrixXd S =
         -staticResponses(V, out.omega2, out.rigid, block(Kr, region, kept_dofs));
     for (int m = 0; m < nk; ++m)

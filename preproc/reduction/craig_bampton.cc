@@ -343,6 +343,7 @@ Eigen::MatrixXd reduceInterface(const ReductionOptions& o, const Eigen::MatrixXd
   out->characteristic_rigid = r.rigid;
   out->characteristic_elastic = r.elastic;
   out->patch_modes = r.patch_modes;
+  out->interface_retained = r.retained;
   out->characteristic_omega2 = std::move(r.omega2);
   // The rigid ones count as dropped.
   out->constraint_modes = r.rigid + r.elastic + r.patch_modes + r.retained;
@@ -438,8 +439,7 @@ ReducedModel reduceBody(const SparseMatrix& K, const SparseMatrix& M, const Redu
   timer.step("reduced mass matrix");
   // Interface reduction: the basis becomes Psi Tif (Psi itself is only multiplied at the end).
   Eigen::MatrixXd Tif;
-  if (o.method == ReductionMethod::kCraigBampton &&
-      (o.interface_modes > 0 || o.interface_loads.cols() > 0)) {
+  if (o.reducesInterface()) {
     Tif = reduceInterface(o, Mr, basis.Kr, &out);
     Mr = (Tif.transpose() * Mr * Tif).eval();
     basis.Kr = (Tif.transpose() * basis.Kr * Tif).eval();

@@ -50,6 +50,11 @@ struct ReductionOptions {
   // pressure_patches.h) whose static responses join the characteristic modes; no columns:
   // none. With loads, interface_modes may be 0.
   Eigen::MatrixXd interface_loads;
+  // Whether the Craig-Bampton interface is reduced (characteristic modes or loads asked for).
+  bool reducesInterface() const {
+    return method == ReductionMethod::kCraigBampton &&
+           (interface_modes > 0 || interface_loads.cols() > 0);
+  }
   Eigen::MatrixXd interface_check_loads;  // the accuracy guard's (same layout; none: none)
   Eigen::MatrixXd rigid_modes;       // ndof x nr, the rigid-body fields
   Eigen::MatrixXd frame_conditions;  // nr x ndof, C for the tangent frame
@@ -66,7 +71,8 @@ struct ReducedModel {
   // (zero ones, elastic ones) and every eigenvalue of the region's, (rad/s)^2.
   int characteristic_rigid = 0;
   int characteristic_elastic = 0;
-  int patch_modes = 0;  // directions from the interface loads' static responses
+  int patch_modes = 0;         // directions from the interface loads' static responses
+  int interface_retained = 0;  // interface markers' DOFs that keep their constraint modes
   // The accuracy guard: the largest share of static compliance the reduced interface misses
   // for the check loads (characteristic_constraint_modes.h); -1: not computed.
   double interface_compliance_error = -1.0;
