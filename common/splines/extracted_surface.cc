@@ -132,6 +132,11 @@ void ExtractedSurface::evaluate(int e, const double* s, const Eigen::MatrixXd& p
 
 Eigen::VectorXd ExtractedSurface::normal(const Eigen::MatrixXd& dx) const {
   Eigen::VectorXd n;
+  normal(dx, n);
+  return n;
+}
+
+void ExtractedSurface::normal(const Eigen::MatrixXd& dx, Eigen::VectorXd& n) const {
   if (dim_ == 2) {
     const Eigen::Vector3d a = dx.col(0), b = dx.col(1);
     n = a.cross(b);
@@ -139,7 +144,7 @@ Eigen::VectorXd ExtractedSurface::normal(const Eigen::MatrixXd& dx) const {
     n.resize(2);
     n << dx(1, 0), -dx(0, 0);
   }
-  return surface_->outward_sign * n / n.norm();
+  n = surface_->outward_sign * n / n.norm();
 }
 
 }  // namespace ffriga

@@ -62,8 +62,10 @@ class ExtractedSurface {
   // above `order` keep what they held (storage is reused: no allocation in the hot path).
   void evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
                 SurfacePoint& out) const;
-  // Unit outward normal from first derivatives (header comment).
+  // Unit outward normal from first derivatives (header comment); the second form into n,
+  // whose storage is reused (the contact search calls it for every point).
   Eigen::VectorXd normal(const Eigen::MatrixXd& dx) const;
+  void normal(const Eigen::MatrixXd& dx, Eigen::VectorXd& n) const;
 
  private:
   int offsets(int e) const { return surface_->function_offsets[e]; }

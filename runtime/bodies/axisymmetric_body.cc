@@ -59,8 +59,8 @@ void AxisymmetricBody::accelerations(const double* sp, const double* sv, const d
   Eigen::Map<Eigen::VectorXd>(accel + 1, n) = MeInvHq - sign_ * aY * MeInvCt_;
 }
 
-void AxisymmetricBody::addRigidPointForce(const BodyPose&, const Eigen::VectorXd&,
-                                          const Eigen::VectorXd& f, double* h) const {
+void AxisymmetricBody::addRigidPointForce(const BodyPose&, const VectorRef&, const VectorRef& f,
+                                          double* h) const {
   h[0] += f(1);
 }
 
@@ -108,16 +108,15 @@ void AxisymmetricBody::massBlocks(const double*, Eigen::MatrixXd& C, Eigen::Matr
 // v = (0, s_v(0)) + A u_dot: the axial translation and the elastic velocity (pointGradients'
 // bv).
 Eigen::VectorXd AxisymmetricBody::pointVelocity(const BodyPose& pose, const double* sv,
-                                                const Eigen::VectorXd&,
-                                                const Eigen::VectorXd& u_dot) const {
+                                                const VectorRef&, const VectorRef& u_dot) const {
   Eigen::VectorXd v = Eigen::VectorXd::Zero(2);
   v(1) = sv[0];
   if (u_dot.size() > 0) v += pose.A * u_dot;
   return v;
 }
 
-void AxisymmetricBody::pointGradients(const BodyPose& pose, const Eigen::VectorXd&,
-                                      const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
+void AxisymmetricBody::pointGradients(const BodyPose& pose, const VectorRef&,
+                                      const Eigen::MatrixXd& Phi_x, const VectorRef& n,
                                       Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {
   bv.resize(numVelocities());
   bv(0) = n(1);

@@ -25,6 +25,7 @@
 
 #include "common/sid/sid.h"
 #include "runtime/bodies/quasi_static_modes.h"
+#include "runtime/bodies/space_vector.h"
 
 namespace ffriga {
 
@@ -89,19 +90,18 @@ class BodyModel {
   // stiffness: for the material point x (deformed, body frame) with modes Phi_x (d x nq) and
   // a world direction n (d): bv = G_v^T n (numVelocities; the generalised force of a unit
   // force along n) and bp = (dx_world/ds_p)^T n (numPositions; rotation parameters left 0).
-  virtual void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
-                              const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
-                              Eigen::VectorXd& bv, Eigen::VectorXd& bp) const = 0;
+  virtual void pointGradients(const BodyPose& pose, const VectorRef& x,
+                              const Eigen::MatrixXd& Phi_x, const VectorRef& n, Eigen::VectorXd& bv,
+                              Eigen::VectorXd& bp) const = 0;
   // The world velocity (d components, m/s) of the material point at x (deformed, body
   // frame) whose elastic velocity in the body frame is u_dot (d, Phi_x qdot), at the
   // velocities sv: G_v^T sv of pointGradients' bv along the world axes, without forming them.
-  virtual Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv,
-                                        const Eigen::VectorXd& x,
-                                        const Eigen::VectorXd& u_dot) const = 0;
+  virtual Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv, const VectorRef& x,
+                                        const VectorRef& u_dot) const = 0;
   // Adds the rigid part of the generalised force of a world force f (d components, N) acting
   // at body point x (d, deformed, m): translational and rotational parts of Eq. (18).
-  virtual void addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x,
-                                  const Eigen::VectorXd& f, double* h) const = 0;
+  virtual void addRigidPointForce(const BodyPose& pose, const VectorRef& x, const VectorRef& f,
+                                  double* h) const = 0;
 
   // Kinetic energy 1/2 z^T M(q) z (J), elastic energy 1/2 q^T Ke q (J), potential energy
   // of gravity -g . (m r_R + A m c(q)) (J).

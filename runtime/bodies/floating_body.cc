@@ -214,8 +214,8 @@ void FloatingBody3d::accelerations(const double* sp, const double* sv, const dou
   a.tail(n) = MeInvHq - MeInvC * ar;
 }
 
-void FloatingBody3d::addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x,
-                                        const Eigen::VectorXd& f, double* h) const {
+void FloatingBody3d::addRigidPointForce(const BodyPose& pose, const VectorRef& x,
+                                        const VectorRef& f, double* h) const {
   const Eigen::Vector3d fb = pose.A.transpose() * f;
   const Eigen::Vector3d xb = x;
   Eigen::Map<Eigen::Vector3d>(h) += fb;
@@ -286,8 +286,7 @@ void FloatingBody3d::massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::Mat
 
 // v = A (v_R + omega x x + u_dot), v_R and omega in body components (pointGradients' bv).
 Eigen::VectorXd FloatingBody3d::pointVelocity(const BodyPose& pose, const double* sv,
-                                              const Eigen::VectorXd& x,
-                                              const Eigen::VectorXd& u_dot) const {
+                                              const VectorRef& x, const VectorRef& u_dot) const {
   const Eigen::Vector3d vR(sv[0], sv[1], sv[2]), omega(sv[3], sv[4], sv[5]);
   const Eigen::Vector3d xb = x;
   Eigen::Vector3d local = vR + omega.cross(xb);
@@ -295,8 +294,8 @@ Eigen::VectorXd FloatingBody3d::pointVelocity(const BodyPose& pose, const double
   return pose.A * local;
 }
 
-void FloatingBody3d::pointGradients(const BodyPose& pose, const Eigen::VectorXd& x,
-                                    const Eigen::MatrixXd& Phi_x, const Eigen::VectorXd& n,
+void FloatingBody3d::pointGradients(const BodyPose& pose, const VectorRef& x,
+                                    const Eigen::MatrixXd& Phi_x, const VectorRef& n,
                                     Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {
   const Eigen::Vector3d nb = pose.A.transpose() * n;
   const Eigen::Vector3d xb = x;

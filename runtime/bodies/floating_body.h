@@ -46,12 +46,11 @@ class FloatingBody3d : public BodyModel {
                      const Eigen::Vector3d& gravity, double* accel) const override;
   void solveMass(const double* sp, Eigen::MatrixXd& B) const override;
   void massBlocks(const double* sp, Eigen::MatrixXd& C, Eigen::MatrixXd& Mrr) const override;
-  Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv, const Eigen::VectorXd& x,
-                                const Eigen::VectorXd& u_dot) const override;
-  void pointGradients(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::MatrixXd& Phi_x,
-                      const Eigen::VectorXd& n, Eigen::VectorXd& bv,
-                      Eigen::VectorXd& bp) const override;
-  void addRigidPointForce(const BodyPose& pose, const Eigen::VectorXd& x, const Eigen::VectorXd& f,
+  Eigen::VectorXd pointVelocity(const BodyPose& pose, const double* sv, const VectorRef& x,
+                                const VectorRef& u_dot) const override;
+  void pointGradients(const BodyPose& pose, const VectorRef& x, const Eigen::MatrixXd& Phi_x,
+                      const VectorRef& n, Eigen::VectorXd& bv, Eigen::VectorXd& bp) const override;
+  void addRigidPointForce(const BodyPose& pose, const VectorRef& x, const VectorRef& f,
                           double* h) const override;
   double kineticEnergy(const double* sp, const double* sv) const override;
   double gravityEnergy(const double* sp, const Eigen::Vector3d& gravity) const override;

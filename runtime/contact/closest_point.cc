@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "common/base/error.h"
 #include "common/splines/rational_basis.h"
 
 namespace ffriga {
@@ -39,11 +40,10 @@ int locate(const ExtractedSurface& surf, Eigen::VectorXd& s, int hint) {
   return best;
 }
 
-// Small fixed-capacity types (parametric dimension <= 2, space dimension <= 3): the Newton
-// loop runs for every collocation point at every right-hand side and must not allocate.
-using ParamVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 2, 1>;
+// Small fixed-capacity types (parametric dimension <= 2, space dimension <= 3; with
+// ParamVector and SpaceVector of runtime/bodies/space_vector.h): the Newton loop runs for
+// every collocation point at every right-hand side and must not allocate.
 using ParamMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 2, 2>;
-using SpaceVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
 
 // Active bounds: the directions held at the domain boundary, where the descent direction -g
 // points out of the domain (held[a]), and the free ones (freeDirs[0 .. nf - 1]).
@@ -100,7 +100,7 @@ ParamVector newtonStep(const ParamVector& g, const ParamMatrix& H, const ParamMa
 // domain) that does not increase phi = |r|^2 / 2 (Newton's full step near the solution;
 // guards Gauss-Newton far from it); s and e: the point reached and its element, trial the
 // surface there. Returns the number of halvings.
-int backtrack(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
+int backtrack(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const VectorRef& x,
               const SurfaceProjection& p, const SpaceVector& r, double decrease, ParamVector& step,
               Eigen::VectorXd& s, int& e, SurfacePoint& trial) {
   const Eigen::VectorXd& lo = surf.domainLower();
@@ -137,7 +137,7 @@ bool orthogonalAtBounds(const ParamVector& g, const Eigen::MatrixXd& X, const Sp
   return orthogonal;
 }
 
-bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const Eigen::VectorXd& x,
+bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const VectorRef& x,
             const ProjectionOptions& o, SurfaceProjection& p) {
   const int d = surf.dim();
   const Eigen::VectorXd& lo = surf.domainLower();
@@ -203,8 +203,8 @@ bool newton(const ExtractedSurface& surf, const Eigen::MatrixXd& points, const E
 }
 
 std::vector<SurfaceProjection> nearestSamples(const ExtractedSurface& surf,
-                                              const Eigen::MatrixXd& points,
-                                              const Eigen::VectorXd& x, int n, int count) {
+                                              const Eigen::MatrixXd& points, const VectorRef& x,
+                                              int n, int count) {
   const int d = surf.dim();
   // Best sample of every element, then the `count` nearest of those.
   std::vector<std::pair<double, SurfaceProjection>> perElement;
@@ -240,13 +240,23 @@ std::vector<SurfaceProjection> nearestSamples(const ExtractedSurface& surf,
 }  // namespace
 
 SurfaceProjection closestPoint(const ExtractedSurface& surface, const Eigen::MatrixXd& points,
-                               const Eigen::VectorXd& x, const SurfaceProjection* start,
+                               const VectorRef& x, const SurfaceProjection* start,
                                const ProjectionOptions& options) {
   SurfaceProjection p;
+  closestPoint(surface, points, x, start, p, options);
+  return p;
+}
+
+void closestPoint(const ExtractedSurface& surface, const Eigen::MatrixXd& points,
+                  const VectorRef& x, const SurfaceProjection* start, SurfaceProjection& p,
+                  const ProjectionOptions& options) {
+  FFRIGA_ASSERT(start != &p, "closestPoint: start and result are one object");
+  p.converged = false;
+  p.orthogonal = false;
   if (start && start->element >= 0 && start->s.size() == surface.dim()) {
     p.element = start->element;
     p.s = start->s;
-    if (newton(surface, points, x, options, p)) return p;
+    if (newton(surface, points, x, options, p)) return;
   }
   // Cold start: Newton from the nearest samples of the few nearest elements (distinct
   // basins of a curved surface), keeping the closest converged foot point.
@@ -263,12 +273,14 @@ SurfaceProjection closestPoint(const ExtractedSurface& surface, const Eigen::Mat
       best = p;
     }
   }
-  if (best.converged) return best;
+  if (best.converged) {
+    p = best;
+    return;
+  }
   p = starts.front();
   p.converged = false;
   p.orthogonal = false;
   surface.evaluate(p.element, p.s.data(), points, 1, p.point);
-  return p;
 }
 
 }  // namespace ffriga

@@ -15,6 +15,7 @@
 #include <Eigen/Dense>
 
 #include "common/splines/extracted_surface.h"
+#include "runtime/bodies/space_vector.h"
 
 namespace ffriga {
 
@@ -41,7 +42,12 @@ struct ProjectionOptions {
 // `points`: world (deformed) control points, one row per body control point. `start`: a
 // previous solution to warm-start from (element >= 0 and s set), or nullptr.
 SurfaceProjection closestPoint(const ExtractedSurface& surface, const Eigen::MatrixXd& points,
-                               const Eigen::VectorXd& x, const SurfaceProjection* start,
+                               const VectorRef& x, const SurfaceProjection* start,
                                const ProjectionOptions& options = ProjectionOptions());
+// The same into `p`, whose storage is reused (the contact search's per-thread workspace:
+// no allocation once sized); `start` must not be `p`.
+void closestPoint(const ExtractedSurface& surface, const Eigen::MatrixXd& points,
+                  const VectorRef& x, const SurfaceProjection* start, SurfaceProjection& p,
+                  const ProjectionOptions& options = ProjectionOptions());
 
 }  // namespace ffriga

@@ -85,11 +85,16 @@ void CollocatedSurface::setup(const BodyModel& body, int index) {
 }
 
 Eigen::VectorXd CollocatedSurface::bodyPoint(int i, const Eigen::VectorXd& u) const {
-  Eigen::VectorXd xb = xc0.row(i).transpose();
-  if (u.size() == 0) return xb;
+  SpaceVector xb;
+  bodyPoint(i, u, xb);
+  return xb;
+}
+
+void CollocatedSurface::bodyPoint(int i, const Eigen::VectorXd& u, SpaceVector& xb) const {
+  xb = xc0.row(i).transpose();
+  if (u.size() == 0) return;
   for (int k = combo_offset[i]; k < combo_offset[i + 1]; ++k)
     xb += combo_value[k] * u.segment(combo_local[k] * dim, dim);
-  return xb;
 }
 
 Eigen::VectorXd CollocatedSurface::pointDisplacement(int i, const Eigen::VectorXd& u) const {
@@ -115,12 +120,16 @@ bool CollocatedSurface::planar() const {
 }
 
 SurfacePoint CollocatedSurface::centre(const Eigen::MatrixXd& points) const {
-  const Eigen::VectorXd mid = 0.5 * (surface.domainLower() + surface.domainUpper());
+  SurfacePoint sp;
+  centre(points, sp);
+  return sp;
+}
+
+void CollocatedSurface::centre(const Eigen::MatrixXd& points, SurfacePoint& sp) const {
+  const ParamVector mid = 0.5 * (surface.domainLower() + surface.domainUpper());
   int e = surface.findElement(mid.data());
   if (e < 0) e = 0;
-  SurfacePoint sp;
   surface.evaluate(e, mid.data(), points, 1, sp);
-  return sp;
 }
 
 }  // namespace ffriga

@@ -43,8 +43,10 @@ struct CollocatedSurface {
   int numPoints() const { return static_cast<int>(xc0.rows()); }
   // The surface's control points' body-frame displacements Phi_S q (cps order, d each).
   Eigen::VectorXd displacements(const Eigen::VectorXd& q) const { return PhiSt.transpose() * q; }
-  // Collocation point i in the body frame, from the control points' displacements u.
+  // Collocation point i in the body frame, from the control points' displacements u; the
+  // second form into xb (no allocation: every point at every right-hand side).
   Eigen::VectorXd bodyPoint(int i, const Eigen::VectorXd& u) const;
+  void bodyPoint(int i, const Eigen::VectorXd& u, SpaceVector& xb) const;
   // Collocation point i's displacement (or velocity) from the control points' ones u
   // (zero for empty u): bodyPoint less the undeformed point (bodyPoint keeps its own sum,
   // from the undeformed point on: the frictionless results' bits).
@@ -58,6 +60,7 @@ struct CollocatedSurface {
   // The surface point at the centre of its parameter domain, with first derivatives, for
   // control points `points` (one row per body control point: undeformed, or deformed world).
   SurfacePoint centre(const Eigen::MatrixXd& points) const;
+  void centre(const Eigen::MatrixXd& points, SurfacePoint& sp) const;  // into sp (reused)
 };
 
 }  // namespace ffriga

@@ -59,38 +59,46 @@ Penetration ContactPair::deepestPenetration(const ForceContext& at) const {
 
 double ContactPair::boxGap(const BodyModel& A, const BodyPose& pa, const BodyModel& B,
                            const BodyPose& pb) const {
-  const World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
+  (void)A;
+  (void)B;
+  const World wa = worldPoints(side_[0], pa), wb = worldPoints(side_[1], pb);
   double gap = -std::numeric_limits<double>::infinity();
   for (int c = 0; c < dim_; ++c) gap = std::max({gap, wa.lo(c) - wb.hi(c), wb.lo(c) - wa.hi(c)});
   return gap;
 }
 
-ContactPair::World ContactPair::worldPoints(const Side& side, const BodyModel& body,
-                                            const BodyPose& pose) const {
+ContactPair::World ContactPair::worldPoints(const Side& side, const BodyPose& pose) const {
   World w;
+  worldPoints(side, pose, w);
+  return w;
+}
+
+void ContactPair::worldPoints(const Side& side, const BodyPose& pose, World& w) const {
   const int d = dim_;
   w.points.resize(side.P0.rows(), d);
-  w.u = side.PhiSt.transpose() * pose.q;
+  w.u.noalias() = side.PhiSt.transpose() * pose.q;
   const Eigen::VectorXd& u = w.u;
-  w.lo = Eigen::VectorXd::Constant(d, std::numeric_limits<double>::infinity());
+  w.lo.setConstant(d, std::numeric_limits<double>::infinity());
   w.hi = -w.lo;
+  SpaceVector xb, x;
   for (std::size_t i = 0; i < side.cps.size(); ++i) {
     const int k = side.cps[i];
-    const Eigen::VectorXd xb = side.P0.row(k).transpose() + u.segment(i * d, d);
-    const Eigen::VectorXd x = pose.origin + pose.A * xb;
+    xb = side.P0.row(k).transpose() + u.segment(i * d, d);
+    x.noalias() = pose.A * dynamic(xb);  // origin + A xb (GEMV, as for dynamic vectors)
+    x += pose.origin;
     w.points.row(k) = x.transpose();
     w.lo = w.lo.cwiseMin(x);
     w.hi = w.hi.cwiseMax(x);
   }
-  (void)body;
-  const SurfacePoint sp = side.centre(w.points);
+  thread_local SurfacePoint sp;
+  side.centre(w.points, sp);
   w.mid_x = sp.x;
-  w.mid_n = (pose.A.determinant() < 0.0 ? -1.0 : 1.0) * side.surface.normal(sp.dx);
-  return w;
+  side.surface.normal(sp.dx, w.mid_n);
+  w.mid_n *= pose.A.determinant() < 0.0 ? -1.0 : 1.0;
 }
 
 double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge,
-                                    const Eigen::VectorXd& x, const SurfaceProjection& p) const {
+                                    const VectorRef& x, const SurfaceProjection& p) const {
   // Axisymmetric: the end of the meridian on the axis (r = 0) is a point of symmetry, not
   // an edge (there the collocation weight 2 pi r w is zero anyway).
   if (dim_ == 2 && std::abs(p.point.x(0)) <= 1e-9 * size_) return 0.0;
@@ -99,22 +107,22 @@ double ContactPair::beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_ed
   return std::max(0.0, std::min(edge, centre));
 }
 
-bool ContactPair::withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge,
-                                  const Eigen::VectorXd& x, const SurfaceProjection& p) {
+bool ContactPair::withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge, const VectorRef& x,
+                                  const SurfaceProjection& p) {
   if (!(st.edge_reach > 0.0)) return false;
-  const Eigen::VectorXd d = x - p.point.x;
+  const SpaceVector d = x - p.point.x;
   return (d - n_edge.dot(d) * n_edge).norm() <= st.edge_reach;
 }
 
-ContactPair::TargetMotion ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u,
-                                                    double renew) {
+void ContactPair::targetMotion(Side& target, const Eigen::VectorXd& u, double renew,
+                               TargetMotion& tm) {
   auto changeAgainst = [&](const Eigen::VectorXd& r) {
     double m = 0.0;
     for (Eigen::Index k = 0; k < u.size(); k += dim_)
       m = std::max(m, (u.segment(k, dim_) - r.segment(k, dim_)).norm());
     return m;
   };
-  TargetMotion tm;
+  tm.change.clear();
   if (target.snapshots.empty() || changeAgainst(target.snapshots.back().u) > renew) {
     const double moves = target.snapshots.empty()
                              ? 0.0
@@ -126,7 +134,6 @@ ContactPair::TargetMotion ContactPair::targetMotion(Side& target, const Eigen::V
   tm.first = target.snapshots.front().id;
   for (const Side::Snapshot& r : target.snapshots) tm.change.push_back(changeAgainst(r.u));
   tm.moves = target.snapshots.back().moves;
-  return tm;
 }
 
 double ContactPair::TargetMotion::since(const Side::Clearance& cl) const {
@@ -142,14 +149,17 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
                            const double* svA, const double* svB) {
   FFRIGA_CHECK(!options_.friction.active() || (svA != nullptr && svB != nullptr),
                "friction needs the bodies' velocities");
-  terms_.clear();
   active_.clear();
+  active_basis_.clear();
   terms_formed_ = false;
   bodies_[0] = &A;
   bodies_[1] = &B;
   poses_[0] = pa;
   poses_[1] = pb;
-  World wa = worldPoints(side_[0], A, pa), wb = worldPoints(side_[1], B, pb);
+  World& wa = world_[0];
+  World& wb = world_[1];
+  worldPoints(side_[0], pa, wa);
+  worldPoints(side_[1], pb, wb);
   // Bounding-box pre-check: apart means no work.
   for (int c = 0; c < dim_; ++c) {
     if (wa.lo(c) > wb.hi(c) + margin_ || wb.lo(c) > wa.hi(c) + margin_) {
@@ -160,8 +170,9 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   // Target motion of each side (header comment). A new snapshot is taken once the newest
   // is a penetration tolerance away: records then hold d_T,e below that size.
   const double renew = penetrationTolerance();
-  const TargetMotion motion[2] = {targetMotion(side_[0], wa.u, renew),
-                                  targetMotion(side_[1], wb.u, renew)};
+  targetMotion(side_[0], wa.u, renew, motion_[0]);
+  targetMotion(side_[1], wb.u, renew, motion_[1]);
+  const TargetMotion* motion = motion_;
   const double factor = roleFactor();
   if (options_.friction.active()) {
     wa.udot = elasticVelocities(side_[0], A, svA);
@@ -194,40 +205,25 @@ void ContactPair::evaluate(const BodyModel& A, const BodyPose& pa, const BodyMod
   }
 }
 
-// One collocation point's outcome in collocate().
-struct ContactPair::PointResult {
-  bool active = false;
-  bool failed = false;
-  double gap = 0.0;
-  double beyond_edge = 0.0;      // penetration behind the edge's tangent plane (m)
-  Eigen::VectorXd f, xb, xt, n;  // force on C (world), body points of C and T, normal
-  int element = -1;
-  Eigen::VectorXd s;
-  PointFriction friction;  // with friction (addFriction): the law's values
-};
-
-// Sums of collocate()'s active points, formed serially in point order.
-struct ContactPair::ForceSums {
-  Eigen::VectorXd fbSum;      // C's elastic forces, sum_i Phi_i^T A_C^T f_i
-  Eigen::MatrixXd FT;         // body-frame forces on T's surface control points (cps order)
-  std::vector<char> touched;  // which of those carry force
-  Eigen::MatrixXd R;          // workspace: the target surface's basis at a foot point
-};
-
 bool ContactPair::needsSearch(const Side& sc, int i, const BodyModel& C, const BodyPose& pc,
                               const World& wc, const BodyPose& pt, const World& wt,
-                              const TargetMotion& motion, PointResult& r, Eigen::VectorXd& x,
-                              Eigen::VectorXd& y) {
+                              const TargetMotion& motion, PointResult& r) {
   const int d = dim_;
-  r.xb = C.nq() > 0 ? sc.bodyPoint(i, wc.u) : Eigen::VectorXd(sc.xc0.row(i).transpose());
-  x = pc.origin + pc.A * r.xb;
+  if (C.nq() > 0) {
+    sc.bodyPoint(i, wc.u, r.xb);
+  } else {
+    r.xb = sc.xc0.row(i).transpose();
+  }
+  r.x.noalias() = pc.A * dynamic(r.xb);  // origin + A xb
+  r.x += pc.origin;
   bool near = true;
   for (int a = 0; a < d; ++a)
-    near = near && x(a) >= wt.lo(a) - margin_ && x(a) <= wt.hi(a) + margin_;
+    near = near && r.x(a) >= wt.lo(a) - margin_ && r.x(a) <= wt.hi(a) + margin_;
   if (!near) return false;
-  y = pt.A.transpose() * (x - pt.origin);
+  const SpaceVector rel = r.x - pt.origin;
+  r.y.noalias() = pt.A.transpose() * dynamic(rel);
   const Side::Clearance& cl = sc.clearance[i];
-  if (cl.valid && cl.gap - (y - cl.y.head(d)).norm() - motion.since(cl) > 0.0) {
+  if (cl.valid && cl.gap - (r.y - cl.y.head(d)).norm() - motion.since(cl) > 0.0) {
     ++avoided_;
     return false;
   }
@@ -236,17 +232,21 @@ bool ContactPair::needsSearch(const Side& sc, int i, const BodyModel& C, const B
 
 void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
                               double orientT, double factor, const TargetMotion& motion,
-                              const Eigen::VectorXd& x, const Eigen::VectorXd& y,
                               PointResult& r) const {
+  const SpaceVector& x = r.x;
   Side::Clearance& cl = sc.clearance[i];
   cl.valid = false;
-  SurfaceProjection p = closestPoint(st.surface, wt.points, x, &sc.cache[i]);
+  // Per-thread workspaces (the searches run in parallel): storage reused, no allocation.
+  thread_local SurfaceProjection p;
+  thread_local Eigen::VectorXd n;
+  closestPoint(st.surface, wt.points, x, &sc.cache[i], p);
   r.failed = !p.converged;
   if (!p.converged) return;
   sc.cache[i] = p;  // warm start of the next evaluation, also for points beyond the edge
   // World normal: the body's rule applied to world tangents, turned back if the body's
   // map is a reflection (an axisymmetric body turned about a radial axis: y -> -y).
-  const Eigen::VectorXd n = orientT * st.surface.normal(p.point.dx);
+  st.surface.normal(p.point.dx, n);
+  n *= orientT;
   if (!p.orthogonal && !withinEdgeReach(st, n, x, p)) {
     r.beyond_edge = beyondEdgeDepth(wt, n, x, p);
     return;
@@ -255,7 +255,7 @@ void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& p
   if (r.gap >= 0.0) {
     cl.valid = true;
     cl.gap = r.gap;
-    cl.y.head(dim_) = y;
+    cl.y.head(dim_) = r.y;
     cl.snapshot = st.snapshots.back().id;
     cl.snapshot_moves = motion.moves;
     cl.motion = motion.change.back();
@@ -264,7 +264,8 @@ void ContactPair::searchPoint(Side& sc, const Side& st, int i, const BodyPose& p
   r.active = true;
   r.n = n;
   r.f = (-options_.penalty * r.gap * sc.weight(i) * factor) * n;
-  r.xt = pt.A.transpose() * (p.point.x - pt.origin);
+  const SpaceVector rel = p.point.x - pt.origin;
+  r.xt.noalias() = pt.A.transpose() * dynamic(rel);
   r.element = p.element;
   r.s = p.s;
 }
@@ -292,31 +293,34 @@ void ContactPair::addPointForces(int c, int i, const PointResult& r, double fact
   const int d = dim_;
   // Contact body: rigid and elastic parts at the collocation point.
   C.addRigidPointForce(pc, r.xb, r.f, hC);
-  const Eigen::VectorXd fbC = pc.A.transpose() * r.f;
-  sums.fbSum += sc.PhiCt.middleCols(i * d, d) * fbC;
+  SpaceVector fbC;
+  fbC.noalias() = pc.A.transpose() * dynamic(r.f);
+  sums.fbSum.noalias() += sc.PhiCt.middleCols(i * d, d) * dynamic(fbC);
   // Target body: -f at x_T, elastic part through the basis at s (sums.R).
-  const Eigen::VectorXd minus = -r.f;
+  const SpaceVector minus = -r.f;
   T.addRigidPointForce(pt, r.xt, minus, hT);
-  const Eigen::VectorXd fbT = pt.A.transpose() * minus;
-  for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
+  SpaceVector fbT;
+  fbT.noalias() = pt.A.transpose() * dynamic(minus);
+  const int nf = st.surface.numFunctions(r.element);
+  for (int k = 0; k < nf; ++k) {
     const int f = st.surface.functions(r.element)[k];
     sums.FT.row(st.local[f]) += sums.R(0, k) * fbT.transpose();
     sums.touched[st.local[f]] = 1;
   }
   active_.push_back({c, i, r.element, options_.penalty * sc.weight(i) * factor,
-                     sums.R.row(0).transpose(), r.xb, r.xt, r.n, r.friction});
+                     active_basis_.size(), r.xb, r.xt, r.n, r.friction});
+  for (int k = 0; k < nf; ++k) active_basis_.push_back(sums.R(0, k));
 }
 
-Eigen::MatrixXd ContactPair::footModes(const Side& st, const BodyModel& T, int element,
-                                       const Eigen::VectorXd& basis) const {
+void ContactPair::footModes(const Side& st, const BodyModel& T, int element, const double* basis,
+                            Eigen::MatrixXd& PhiTt) const {
   const int d = dim_;
-  Eigen::MatrixXd PhiTt = Eigen::MatrixXd::Zero(T.nq(), d);
-  if (T.nq() == 0) return PhiTt;
+  PhiTt.setZero(T.nq(), d);
+  if (T.nq() == 0) return;
   for (int k = 0; k < st.surface.numFunctions(element); ++k) {
     const int f = st.surface.functions(element)[k];
-    PhiTt += basis(k) * st.PhiSt.middleCols(st.local[f] * d, d);
+    PhiTt += basis[k] * st.PhiSt.middleCols(st.local[f] * d, d);
   }
-  return PhiTt;
 }
 
 Eigen::VectorXd ContactPair::elasticVelocities(const Side& side, const BodyModel& body,
@@ -335,7 +339,7 @@ void ContactPair::addFriction(int c, int i, PointResult& r, const BodyModel& C, 
   const int d = dim_;
   // The foot point's elastic velocity: the target surface's basis at s over its control
   // points' velocities.
-  Eigen::VectorXd udotT = Eigen::VectorXd::Zero(d);
+  SpaceVector udotT = SpaceVector::Zero(d);
   if (wt.udot.size() > 0) {
     for (int k = 0; k < st.surface.numFunctions(r.element); ++k) {
       const int f = st.surface.functions(r.element)[k];
@@ -370,13 +374,14 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
   Side& sc = side_[c];
   const Side& st = side_[1 - c];
   const int d = dim_, nc = static_cast<int>(sc.xc0.rows());
-  std::vector<PointResult> res(nc);
+  std::vector<PointResult>& res = results_[c];
+  res.assign(nc, PointResult());
   const double orientT = pt.A.determinant() < 0.0 ? -1.0 : 1.0;
   // Phase 1 (serial): the points, and which of them need a search.
-  std::vector<int> search;
-  std::vector<Eigen::VectorXd> xs(nc), ys(nc);
+  std::vector<int>& search = search_;
+  search.clear();
   for (int i = 0; i < nc; ++i) {
-    if (needsSearch(sc, i, C, pc, wc, pt, wt, motion, res[i], xs[i], ys[i])) search.push_back(i);
+    if (needsSearch(sc, i, C, pc, wc, pt, wt, motion, res[i])) search.push_back(i);
   }
   searches_ += static_cast<long long>(search.size());
   // Phase 2: closest points of the candidates.
@@ -384,11 +389,13 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
 #pragma omp parallel for schedule(dynamic, 8) if (ns >= kParallelPoints)
   for (int k = 0; k < ns; ++k) {
     const int i = search[k];
-    searchPoint(sc, st, i, pt, wt, orientT, factor, motion, xs[i], ys[i], res[i]);
+    searchPoint(sc, st, i, pt, wt, orientT, factor, motion, res[i]);
   }
   // Phase 3: serial sums in point order (independent of the thread count).
-  ForceSums sums{Eigen::VectorXd::Zero(C.nq()), Eigen::MatrixXd::Zero(st.cps.size(), d),
-                 std::vector<char>(st.cps.size(), 0), Eigen::MatrixXd()};
+  ForceSums& sums = sums_[c];
+  sums.fbSum.setZero(C.nq());
+  sums.FT.setZero(st.cps.size(), d);
+  sums.touched.assign(st.cps.size(), 0);
   const bool friction = options_.friction.active();
   for (int i = 0; i < nc; ++i) {
     PointResult& r = res[i];
@@ -398,34 +405,50 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
     if (r.active) addPointForces(c, i, r, factor, C, pc, T, pt, hC, hT, sums);
     if (record) {
       if (r.active)
-        pressure_.set(c, i, xs[i], -options_.penalty * r.gap, r.n);
+        pressure_.set(c, i, r.x, -options_.penalty * r.gap, r.n);
       else
-        pressure_.set(c, i, xs[i]);
+        pressure_.set(c, i, r.x);
       if (r.active && friction) pressure_.setTraction(c, i, r.friction.force);
     }
   }
   addElasticForces(st, C, T, hC, hT, sums);
 }
 
+StiffnessTerm ContactPair::spareTerm() const {
+  if (spare_terms_.empty()) return StiffnessTerm();
+  StiffnessTerm term = std::move(spare_terms_.back());
+  spare_terms_.pop_back();
+  // Everything but the gradients' storage as a new term's (pointGradients sets bv, bp).
+  term.kind = StiffnessTerm::Kind::kNormal;
+  term.anchor = -1;
+  term.aU.resize(0);
+  term.aV.resize(0);
+  return term;
+}
+
 const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
   if (terms_formed_) return terms_;
+  // The last formation's terms become spares: their vectors' storage is reused.
+  for (StiffnessTerm& t : terms_) spare_terms_.push_back(std::move(t));
   terms_.clear();
   terms_.reserve(active_.size());
   const int d = dim_;
-  Eigen::MatrixXd PhiTt;
+  Eigen::MatrixXd& PhiTt = PhiTt_;
+  const Eigen::MatrixXd& PhiC = PhiC_;
+  const Eigen::MatrixXd& PhiT = PhiT_;
   for (const ActivePoint& a : active_) {
     const Side& sc = side_[a.c];
     const Side& st = side_[1 - a.c];
     const BodyModel& C = *bodies_[a.c];
     const BodyModel& T = *bodies_[1 - a.c];
     // Phi at the foot point x_T, transposed: the surface basis at s over T's control points.
-    PhiTt = footModes(st, T, a.element, a.basis);
-    StiffnessTerm term;
+    footModes(st, T, a.element, active_basis_.data() + a.basis, PhiTt);
+    StiffnessTerm term = spareTerm();
     term.body_c = a.c == 0 ? bodyA() : bodyB();
     term.body_t = a.c == 0 ? bodyB() : bodyA();
     term.k = a.k;
-    const Eigen::MatrixXd PhiC = sc.PhiCt.middleCols(a.i * d, d).transpose();
-    const Eigen::MatrixXd PhiT = PhiTt.transpose();
+    PhiC_ = sc.PhiCt.middleCols(a.i * d, d).transpose();
+    PhiT_ = PhiTt.transpose();
     C.pointGradients(poses_[a.c], a.xb, PhiC, a.n, term.bvC, term.bpC);
     T.pointGradients(poses_[1 - a.c], a.xt, PhiT, a.n, term.bvT, term.bpT);
     // Friction with the relative velocity G_C^T s_vC - G_T^T s_vT (coulomb_friction.h).
@@ -447,7 +470,9 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
 
 Penetration ContactPair::deepestPenetration(const BodyModel& A, const BodyPose& pa,
                                             const BodyModel& B, const BodyPose& pb) const {
-  const World w[2] = {worldPoints(side_[0], A, pa), worldPoints(side_[1], B, pb)};
+  (void)A;
+  (void)B;
+  const World w[2] = {worldPoints(side_[0], pa), worldPoints(side_[1], pb)};
   const BodyPose* pose[2] = {&pa, &pb};
   Penetration deepest;
   for (int c = 0; c < (options_.both_roles ? 2 : 1); ++c) {

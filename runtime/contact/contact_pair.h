@@ -30,6 +30,9 @@
 // The searches run in parallel (OpenMP) when there are at least kParallelPoints of them;
 // the sums are formed serially afterwards in a fixed order, so results do not depend on
 // the number of threads.
+// The pair keeps its per-evaluation records (points, sums, stiffness terms) between
+// evaluations and reuses their storage: a right-hand side allocates nothing once the
+// active set has settled.
 #pragma once
 
 #include <deque>
@@ -39,6 +42,7 @@
 #include <Eigen/Dense>
 
 #include "runtime/bodies/body_model.h"
+#include "runtime/bodies/space_vector.h"
 #include "runtime/contact/closest_point.h"
 #include "runtime/contact/collocated_surface.h"
 #include "runtime/contact/surface_contact.h"
@@ -118,7 +122,7 @@ class ContactPair : public SurfaceContact {
     // Bound on the target's surface motion since a search with record `cl` (m).
     double since(const Side::Clearance& cl) const;
   };
-  TargetMotion targetMotion(Side& target, const Eigen::VectorXd& u, double renew);
+  void targetMotion(Side& target, const Eigen::VectorXd& u, double renew, TargetMotion& tm);
   struct World {
     Eigen::VectorXd u;       // cps.size() * d, body-frame displacements of the surface points
     Eigen::MatrixXd points;  // ncp x d, deformed control points in world coordinates
@@ -132,18 +136,19 @@ class ContactPair : public SurfaceContact {
   // Depth of x behind the surface for a closest point p on the edge (not orthogonal): behind
   // both the tangent plane at p and the one at the surface's centre (a point beside the
   // surface is in front of one of them), else 0.
-  double beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge, const Eigen::VectorXd& x,
+  double beyondEdgeDepth(const World& wt, const Eigen::VectorXd& n_edge, const VectorRef& x,
                          const SurfaceProjection& p) const;
   // Whether x, whose closest point p on the target st is on its edge, lies within st's edge
   // reach of the tangent plane at p, off the surface: then the plane holds it as if the
   // surface went on. Only planar targets reach (flat faces of equal size meeting end-on);
   // beside the edge of a curved region the surface would go on curving, and a contact that
   // outgrows such a region must stop the run as before.
-  static bool withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge,
-                              const Eigen::VectorXd& x, const SurfaceProjection& p);
+  static bool withinEdgeReach(const Side& st, const Eigen::VectorXd& n_edge, const VectorRef& x,
+                              const SurfaceProjection& p);
   // Each role's share of a point's force: 1/2 where the two roles are averaged, else 1.
   double roleFactor() const { return options_.both_roles ? 0.5 : 1.0; }
-  World worldPoints(const Side& side, const BodyModel& body, const BodyPose& pose) const;
+  World worldPoints(const Side& side, const BodyPose& pose) const;
+  void worldPoints(const Side& side, const BodyPose& pose, World& w) const;
   // Side c's collocation points against the other side as the target: adds the generalised
   // forces times `factor` to hC and hT and the diagnostics to `state` if given, in three
   // phases: which points need a search (serial), the searches (parallel), the sums (serial);
@@ -153,29 +158,44 @@ class ContactPair : public SurfaceContact {
                  const BodyPose& pt, const World& wt, double* hC, double* hT, double factor,
                  const TargetMotion& motion, ContactState* state, bool record, const double* svC,
                  const double* svT);
-  struct PointResult;  // one collocation point's outcome (contact_pair.cc)
-  struct ForceSums;    // the serial sums over the active points (contact_pair.cc)
+  // One collocation point's outcome in collocate().
+  struct PointResult {
+    bool active = false;
+    bool failed = false;
+    double gap = 0.0;
+    double beyond_edge = 0.0;  // penetration behind the edge's tangent plane (m)
+    SpaceVector x, y;          // world point, and in the target's frame (if near)
+    SpaceVector f, xb, xt, n;  // force on C (world), body points of C and T, normal
+    int element = -1;
+    ParamVector s;
+    PointFriction friction;  // with friction (addFriction): the law's values
+  };
+  // Sums of collocate()'s active points, formed serially in point order.
+  struct ForceSums {
+    Eigen::VectorXd fbSum;      // C's elastic forces, sum_i Phi_i^T A_C^T f_i
+    Eigen::MatrixXd FT;         // body-frame forces on T's surface control points (cps order)
+    std::vector<char> touched;  // which of those carry force
+    Eigen::MatrixXd R;          // workspace: the target surface's basis at a foot point
+  };
   // Phase 1, point i of contact side sc: its body point r.xb (from the control points'
-  // displacements), world position x and, if near the target's inflated box, its position y
-  // in the target's frame; true if it needs a closest-point search (not near: false; cleared
-  // by the clearance bound of the header comment: false, counted as avoided).
+  // displacements), world position r.x and, if near the target's inflated box, its position
+  // r.y in the target's frame; true if it needs a closest-point search (not near: false;
+  // cleared by the clearance bound of the header comment: false, counted as avoided).
   bool needsSearch(const Side& sc, int i, const BodyModel& C, const BodyPose& pc, const World& wc,
-                   const BodyPose& pt, const World& wt, const TargetMotion& motion, PointResult& r,
-                   Eigen::VectorXd& x, Eigen::VectorXd& y);
-  // Phase 2, candidate i at x (y in the target's frame): its closest point on the target
+                   const BodyPose& pt, const World& wt, const TargetMotion& motion, PointResult& r);
+  // Phase 2, candidate i at r.x (r.y in the target's frame): its closest point on the target
   // (Eq. 15, warm-started from and stored in sc.cache[i]), the normal gap (Eq. 16) and, for
   // g_n < 0, the penalty force on C (Eq. 17); a point in front gets a clearance record in
   // sc.clearance[i], one beyond the edge its depth. Writes only point i's entries.
   void searchPoint(Side& sc, const Side& st, int i, const BodyPose& pt, const World& wt,
-                   double orientT, double factor, const TargetMotion& motion,
-                   const Eigen::VectorXd& x, const Eigen::VectorXd& y, PointResult& r) const;
+                   double orientT, double factor, const TargetMotion& motion, PointResult& r) const;
   // The side's surface control points' elastic velocities (World::udot) at velocities sv.
   Eigen::VectorXd elasticVelocities(const Side& side, const BodyModel& body,
                                     const double* sv) const;
-  // Target side st's modes at a foot point, transposed (T.nq() x d): the surface basis
-  // `basis` of `element` over st's control points.
-  Eigen::MatrixXd footModes(const Side& st, const BodyModel& T, int element,
-                            const Eigen::VectorXd& basis) const;
+  // Target side st's modes at a foot point, transposed (T.nq() x d), into PhiTt: the surface
+  // basis `basis` of `element` over st's control points.
+  void footModes(const Side& st, const BodyModel& T, int element, const double* basis,
+                 Eigen::MatrixXd& PhiTt) const;
   // Phase 3, friction at active point i of side c (runtime/contact/coulomb_friction.h): the
   // relative velocity of the collocation point and the foot point (BodyModel::pointVelocity
   // with the sides' World::udot; R: the target surface's basis at the foot point), and the
@@ -201,18 +221,33 @@ class ContactPair : public SurfaceContact {
                         double* hT, const ForceSums& sums) const;
   // What stiffnessTerms() needs of each active point of the last evaluate(): the contact
   // side c, collocation point i, the foot point's element on the target and its basis
-  // values there, body points, normal and k; and the bodies and poses of that evaluation.
+  // values there (active_basis_ from `basis`), body points, normal and k; and the bodies
+  // and poses of that evaluation.
   struct ActivePoint {
     int c = 0, i = 0, element = -1;
     double k = 0.0;
-    Eigen::VectorXd basis, xb, xt, n;
+    std::size_t basis = 0;  // offset of its basis values in active_basis_
+    SpaceVector xb, xt, n;
     PointFriction friction;  // friction: its law's values at the point
   };
   std::vector<ActivePoint> active_;
+  std::vector<double> active_basis_;
   const BodyModel* bodies_[2] = {nullptr, nullptr};
   BodyPose poses_[2];
   mutable std::vector<StiffnessTerm> terms_;
   mutable bool terms_formed_ = true;
+  // Storage reused from one evaluation to the next: the terms of earlier formations (their
+  // vectors), the modes at a point, each side's world points, target motion, point results
+  // and sums as the contact side (index c), and the candidates of a collocate().
+  mutable std::vector<StiffnessTerm> spare_terms_;
+  // A spare term reset to a new one's fields (or a new one if none is spare).
+  StiffnessTerm spareTerm() const;
+  mutable Eigen::MatrixXd PhiTt_, PhiC_, PhiT_;
+  World world_[2];
+  TargetMotion motion_[2];
+  std::vector<PointResult> results_[2];
+  ForceSums sums_[2];
+  std::vector<int> search_;
   Side side_[2];
   int dim_ = 3;
   double margin_ = 0.0;
