@@ -95,9 +95,12 @@ int ExtractedSurface::findElement(const double* s) const {
 }
 
 void ExtractedSurface::basis(int e, const double* s, int order, Eigen::MatrixXd& R) const {
-  // Workspaces per thread: the contact search calls this millions of times from an OpenMP
-  // loop, and Eigen reuses storage of the same size without allocating.
-  thread_local Eigen::MatrixXd b0, b1, bern, B;
+  // Workspaces per thread and derivative order: the contact search calls this millions of
+  // times from an OpenMP loop with alternating orders (Newton 2, line search 0), and Eigen
+  // reuses storage of the same size without allocating.
+  thread_local Eigen::MatrixXd b0Of[3], b1Of[3], bernOf[3], BOf[3];
+  const int slot = std::min(order, 2);
+  Eigen::MatrixXd &b0 = b0Of[slot], &b1 = b1Of[slot], &bern = bernOf[slot], &B = BOf[slot];
   const std::vector<int>& p = surface_->degrees;
   const int rows = numDerivativeRows(dim_, order);
   const double h0 = upper_(e, 0) - lower_(e, 0);
@@ -125,7 +128,8 @@ void ExtractedSurface::basis(int e, const double* s, int order, Eigen::MatrixXd&
 
 void ExtractedSurface::evaluate(int e, const double* s, const Eigen::MatrixXd& points, int order,
                                 SurfacePoint& out) const {
-  thread_local Eigen::MatrixXd R;
+  thread_local Eigen::MatrixXd ROf[3];  // per order, as in basis()
+  Eigen::MatrixXd& R = ROf[std::min(order, 2)];
   basis(e, s, order, R);
   pointFromTable(R, functions(e), points, dim_, order, out);
 }

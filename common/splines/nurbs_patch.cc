@@ -157,7 +157,9 @@ void NurbsPatch::basis(const double* xi, int order, PatchBasis& out) const {
 
 void pointFromTable(const Eigen::MatrixXd& table, const int* functions,
                     const Eigen::MatrixXd& points, int d, int order, PatchPoint& pt) {
-  thread_local Eigen::MatrixXd X;
+  // Per-thread workspace per order (storage reused: the contact search alternates orders).
+  thread_local Eigen::MatrixXd XOf[3];
+  Eigen::MatrixXd& X = XOf[std::min(order, 2)];
   X.setZero(table.rows(), points.cols());
   for (int i = 0; i < table.cols(); ++i) X.noalias() += table.col(i) * points.row(functions[i]);
   pt.x = X.row(0).transpose();

@@ -1,5 +1,7 @@
 #include "common/splines/rational_basis.h"
 
+#include <algorithm>
+
 #include "common/base/error.h"
 
 namespace ffriga {
@@ -10,9 +12,13 @@ void rationalize(const Eigen::MatrixXd& B, const Eigen::VectorXd& w, int d, int 
   FFRIGA_ASSERT(B.rows() >= rows && B.cols() == w.size(),
                 "basis table " << B.rows() << "x" << B.cols());
   // Weighted polynomial basis and the weight function W with its derivatives.
-  // Per-thread workspaces: evaluated in the contact search's OpenMP loop, no allocation.
-  thread_local Eigen::MatrixXd Bw;
-  thread_local Eigen::VectorXd W;
+  // Per-thread workspaces, one per order: evaluated in the contact search's OpenMP loop,
+  // where the orders alternate (Newton 2, line search 0) and Eigen reuses storage only for
+  // the same size.
+  thread_local Eigen::MatrixXd BwOf[3];
+  thread_local Eigen::VectorXd WOf[3];
+  Eigen::MatrixXd& Bw = BwOf[std::min(order, 2)];
+  Eigen::VectorXd& W = WOf[std::min(order, 2)];
   Bw.noalias() = B.topRows(rows) * w.asDiagonal();
   W.noalias() = Bw.rowwise().sum();
   R.resize(rows, B.cols());

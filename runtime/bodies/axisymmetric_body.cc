@@ -120,7 +120,12 @@ void AxisymmetricBody::pointGradients(const BodyPose& pose, const VectorRef&,
                                       Eigen::VectorXd& bv, Eigen::VectorXd& bp) const {
   bv.resize(numVelocities());
   bv(0) = n(1);
-  if (nq() > 0) bv.tail(nq()) = Phi_x.transpose() * (pose.A.transpose() * n);
+  if (nq() > 0) {
+    // A^T n first, then Phi^T (A^T n) straight into bv: no temporaries on the heap.
+    SpaceVector nb;
+    nb.noalias() = pose.A.transpose() * n;
+    bv.tail(nq()).noalias() = Phi_x.transpose() * dynamic(nb);
+  }
   bp = bv;
 }
 
