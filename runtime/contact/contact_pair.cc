@@ -415,14 +415,17 @@ void ContactPair::collocate(int c, const BodyModel& C, const BodyPose& pc, const
 }
 
 StiffnessTerm ContactPair::spareTerm() const {
-  if (spare_terms_.empty()) return StiffnessTerm();
-  StiffnessTerm term = std::move(spare_terms_.back());
+  // A new term (every field at its default) holding the gradients' storage of a spare one:
+  // pointGradients overwrites bv and bp whole. A field added to StiffnessTerm later starts
+  // at its default here without being named.
+  StiffnessTerm term;
+  if (spare_terms_.empty()) return term;
+  StiffnessTerm& spare = spare_terms_.back();
+  term.bvC.swap(spare.bvC);
+  term.bpC.swap(spare.bpC);
+  term.bvT.swap(spare.bvT);
+  term.bpT.swap(spare.bpT);
   spare_terms_.pop_back();
-  // Everything but the gradients' storage as a new term's (pointGradients sets bv, bp).
-  term.kind = StiffnessTerm::Kind::kNormal;
-  term.anchor = -1;
-  term.aU.resize(0);
-  term.aV.resize(0);
   return term;
 }
 
@@ -433,32 +436,29 @@ const std::vector<StiffnessTerm>& ContactPair::stiffnessTerms() const {
   terms_.clear();
   terms_.reserve(active_.size());
   const int d = dim_;
-  Eigen::MatrixXd& PhiTt = PhiTt_;
-  const Eigen::MatrixXd& PhiC = PhiC_;
-  const Eigen::MatrixXd& PhiT = PhiT_;
   for (const ActivePoint& a : active_) {
     const Side& sc = side_[a.c];
     const Side& st = side_[1 - a.c];
     const BodyModel& C = *bodies_[a.c];
     const BodyModel& T = *bodies_[1 - a.c];
     // Phi at the foot point x_T, transposed: the surface basis at s over T's control points.
-    footModes(st, T, a.element, active_basis_.data() + a.basis, PhiTt);
+    footModes(st, T, a.element, active_basis_.data() + a.basis, PhiTt_);
     StiffnessTerm term = spareTerm();
     term.body_c = a.c == 0 ? bodyA() : bodyB();
     term.body_t = a.c == 0 ? bodyB() : bodyA();
     term.k = a.k;
     PhiC_ = sc.PhiCt.middleCols(a.i * d, d).transpose();
-    PhiT_ = PhiTt.transpose();
-    C.pointGradients(poses_[a.c], a.xb, PhiC, a.n, term.bvC, term.bpC);
-    T.pointGradients(poses_[1 - a.c], a.xt, PhiT, a.n, term.bvT, term.bpT);
+    PhiT_ = PhiTt_.transpose();
+    C.pointGradients(poses_[a.c], a.xb, PhiC_, a.n, term.bvC, term.bpC);
+    T.pointGradients(poses_[1 - a.c], a.xt, PhiT_, a.n, term.bvT, term.bpT);
     // Friction with the relative velocity G_C^T s_vC - G_T^T s_vT (coulomb_friction.h).
     if (options_.friction.active()) {
       appendFrictionTerms(
           a.friction, term,
           [&](const Eigen::VectorXd& e, StiffnessTerm& t) {
             Eigen::VectorXd unused;
-            C.pointGradients(poses_[a.c], a.xb, PhiC, e, t.bvC, unused);
-            T.pointGradients(poses_[1 - a.c], a.xt, PhiT, e, t.bvT, unused);
+            C.pointGradients(poses_[a.c], a.xb, PhiC_, e, t.bvC, unused);
+            T.pointGradients(poses_[1 - a.c], a.xt, PhiT_, e, t.bvT, unused);
           },
           terms_);
     }
