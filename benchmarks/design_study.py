@@ -20,7 +20,13 @@ With --solid the same for 3D solid spheres (geometry sphere, 50 normal modes as 
 Sect. 6, the default accuracy level N = 2) on a smaller matrix of ten impacts; the finer
 comparison (N = 3, about 47,000 ndof and minutes per case) only with --finer.
 
+With --plateau, `penalty_factor: auto` against the plateau of paper Fig. 7 instead: for a
+choice of cases (PLATEAU_CASES, each end of the matrix) the impact is run again with
+c_p = PLATEAU_FACTOR times auto's (penetration 0.025 % of Hertz's approach instead of
+0.2 %), and the force peak and duration at auto's value are reported against that run's.
+
 usage: design_study.py BUILD_DIR OUT_DIR [--solid [--finer]] [--quick] [--json FILE] [--png FILE]
+       design_study.py BUILD_DIR OUT_DIR --plateau [--solid] [--json FILE]
        design_study.py --plot-only JSON PNG [--solid]
 """
 import json
@@ -88,8 +94,9 @@ integrator:
 """
 
 
-def run_case(build, out, case, N):
-    """One impact: returns the figures as a dict."""
+def run_case(build, out, case, N, penalty_scale=None):
+    """One impact: returns the figures as a dict. With penalty_scale, the impact is run
+    again with that multiple of auto's c_p, and its figures come back under 'plateau'."""
     R, E, nu, rho, v, ratio = (case[k] for k in ("R", "E", "nu", "rho", "v", "ratio"))
     tag = f"{case['name']}_N{N:g}"
     d = os.path.join(out, tag)
@@ -134,7 +141,25 @@ def run_case(build, out, case, N):
             row.setdefault("contact_radius", float(s["design/contact_radius"][()]))
             f1 = max(f1, float(s["sid/frequencies_hz"][:].min()))
     row["T_f1"] = T * f1
+    if penalty_scale:
+        row["plateau"] = rerun_stiffer(build, d, row["penalty"] * penalty_scale)
     return row
+
+
+def rerun_stiffer(build, d, penalty):
+    """The impact of directory d again with c_p = penalty (N/m^3): its force peak, duration,
+    steps and wall time."""
+    t0 = time.perf_counter()
+    subprocess.run([os.path.join(build, "bin", "ffrsim"), "-q", os.path.join(d, "scene.yaml"),
+                    "-o", os.path.join(d, "result_plateau.h5"),
+                    "--set", f"contacts.0.penalty_factor={penalty!r}"], check=True)
+    wall = time.perf_counter() - t0
+    with h5py.File(os.path.join(d, "result_plateau.h5"), "r") as f:
+        a = f.attrs
+        return dict(penalty=float(f["contacts/impact"].attrs["penalty_factor"]),
+                    force=float(a["max_contact_force_N"]),
+                    duration=float(a["contact_duration_s"]), steps=int(a["solver_steps"]),
+                    ffrsim_s=wall)
 
 
 def cases(quick):
@@ -196,6 +221,39 @@ def run_matrix(build, out, quick):
     return rows
 
 
+# --plateau: auto's c_p against PLATEAU_FACTOR times it, on cases from each end of the
+# matrix (the paper's, the fastest, the softest and stiffest materials, unequal radii).
+PLATEAU_FACTOR = 8.0
+PLATEAU_CASES = (("paper", "v5", "carbide_R0.05_v2", "polymer_R0.02_v0.05", "ratio2") if SOLID else
+                 ("paper", "v20", "v0.01", "carbide_R0.05_v2", "polymer_R0.001_v0.5", "ratio5",
+                  "glass_ratio3"))
+
+
+def run_plateau(build, out):
+    """Auto's force peak and duration against the stiffer penalty's, a row per case."""
+    rows = []
+    print(f"{'case':>22} {'T f1':>6} {'c_p auto':>10} {'force':>8} {'dur':>8} "
+          f"{'vs x' + format(PLATEAU_FACTOR, 'g') + ': force':>16} {'dur':>8} {'steps':>11} "
+          f"{'sim s':>11}")
+    chosen = [c for c in cases(False) if c["name"] in PLATEAU_CASES]
+    for case in chosen:
+        r = run_case(build, out, case, LEVELS[0], penalty_scale=PLATEAU_FACTOR)
+        p = r["plateau"]
+        r["auto_vs_plateau_force"] = r["force"] / p["force"] - 1
+        r["auto_vs_plateau_duration"] = r["duration"] / p["duration"] - 1
+        rows.append(r)
+        print(f"{r['case']:>22} {r['T_f1']:6.1f} {r['penalty']:10.3e} "
+              f"{100 * r['force_vs_hertz']:+7.3f}% {100 * r['duration_vs_hertz']:+7.3f}% "
+              f"{100 * r['auto_vs_plateau_force']:+15.3f}% {100 * r['auto_vs_plateau_duration']:+7.3f}% "
+              f"{r['steps']:5d}/{p['steps']:5d} {r['ffrsim_s']:5.1f}/{p['ffrsim_s']:5.1f}",
+              flush=True)
+    print(f"{len(rows)} cases: auto's force peak within "
+          f"{100 * max(abs(r['auto_vs_plateau_force']) for r in rows):.3f} % and duration within "
+          f"{100 * max(abs(r['auto_vs_plateau_duration']) for r in rows):.3f} % of "
+          f"{PLATEAU_FACTOR:g} x auto's c_p")
+    return rows
+
+
 def summarise(rows):
     trusted = [r for r in rows if r["T_f1"] >= QUASI_STATIC_LIMIT]
     doubtful = [r for r in rows if "finer_force" in r]
@@ -244,8 +302,11 @@ def main():
     build, out = sys.argv[1], sys.argv[2]
     json_path = sys.argv[sys.argv.index("--json") + 1] if "--json" in sys.argv else None
     png_path = sys.argv[sys.argv.index("--png") + 1] if "--png" in sys.argv else None
-    rows = run_matrix(build, out, "--quick" in sys.argv)
-    summarise(rows)
+    if "--plateau" in sys.argv:
+        rows = run_plateau(build, out)
+    else:
+        rows = run_matrix(build, out, "--quick" in sys.argv)
+        summarise(rows)
     if json_path:
         with open(json_path, "w") as f:
             json.dump(rows, f, indent=1)

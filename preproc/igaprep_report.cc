@@ -70,9 +70,12 @@ void printHierarchy(const BodyConfig& c, const HierarchicalSpace& space) {
   std::printf("  %-6s %9s %18s  %s\n", "level", "elements", "active functions", "region");
   for (int l = 0; l < space.numLevels(); ++l) {
     std::printf("  %-6d %9d %18d  ", l, space.numElementsOnLevel(l), space.numFunctionsOnLevel(l));
-    const ParamBox box = space.region(l);
-    for (int a = 0; a < space.paramDim(); ++a)
-      std::printf("%s[%.9g, %.9g]", a ? " x " : "", box.lower[a], box.upper[a]);
+    const LevelBoxes& boxes = space.region(l);
+    for (std::size_t k = 0; k < boxes.size(); ++k) {
+      if (k) std::printf("  and  ");
+      for (int a = 0; a < space.paramDim(); ++a)
+        std::printf("%s[%.9g, %.9g]", a ? " x " : "", boxes[k].lower[a], boxes[k].upper[a]);
+    }
     std::printf("\n");
   }
   std::printf("  %-6s %9d %18d\n", "total", space.numElements(), space.numFunctions());

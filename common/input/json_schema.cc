@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -497,11 +498,27 @@ std::string scalarAlternative(const YAML::Node& b) {
   return out.str();
 }
 
+// Where in the document an error's key lies, for comparing how far branches of a oneOf got:
+// its depth (the number of '.' and '[' in the key the message names: "key
+// 'hierarchy.boxes[0][1][1]': ..." has 4; 0 without a key), then its list indices in order
+// (a later item is further).
+std::vector<int> errorPosition(const std::string& message) {
+  std::vector<int> position{0};
+  const std::size_t start = message.find("key '");
+  if (start == std::string::npos) return position;
+  const std::size_t end = message.find('\'', start + 5);
+  for (std::size_t i = start + 5; i < end && i < message.size(); ++i) {
+    if (message[i] == '.' || message[i] == '[') ++position[0];
+    if (message[i] == '[') position.push_back(std::atoi(message.c_str() + i + 1));
+  }
+  return position;
+}
+
 // Exactly one branch must accept the node; if none does: for a scalar against branches of
 // scalars alone, every alternative in one line ("expected a number > 0 or 'auto'"); else the
-// error of the first branch whose type is the node's kind (a mapping against the object
-// branch), so that the message names the offending inner key rather than "expected a
-// boolean".
+// error of the branch of the node's kind (a mapping against the object branch) that got
+// deepest into the node, so that the message names the offending inner key rather than
+// "expected a boolean".
 void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
                                  const YAML::Node& node, const YAML::Node& parent,
                                  const std::string& key) const {
@@ -517,7 +534,12 @@ void JsonSchema::checkExactlyOne(const YamlDocument& doc, const YAML::Node& one,
       const bool sameKind = type && type.IsScalar() &&
                             ((type.Scalar() == "object") == node.IsMap()) &&
                             ((type.Scalar() == "array") == node.IsSequence());
-      if (sameKind && kindError.empty()) kindError = e.what();
+      // Of several branches of the node's kind, the one whose error lies deepest in the
+      // node (then furthest along it) got furthest: its error names the offending item (a
+      // list of boxes against a single box: the interval that is too short, not the box
+      // read as an interval).
+      if (sameKind && (kindError.empty() || errorPosition(e.what()) > errorPosition(kindError)))
+        kindError = e.what();
       continue;
     }
     if (accepted >= 0) {

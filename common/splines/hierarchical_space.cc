@@ -79,68 +79,121 @@ std::string checkLevels(const NurbsPatch& patch, int levels) {
   return "";
 }
 
+bool boxInside(const ParamBox& b, const ParamBox& outer, int d) {
+  for (int a = 0; a < d; ++a)
+    if (b.lower[a] < outer.lower[a] || b.upper[a] > outer.upper[a]) return false;
+  return true;
+}
+
+namespace {
+
+// Box `box` of level l = b + 1 along direction a: snapped onto the level-(l-1) knot lines,
+// non-empty, and wide enough for one level-l B-spline. Empty reason: no problem.
+std::string checkBoxDirection(const std::vector<std::vector<KnotVector>>& knots, int l, int a,
+                              ParamBox& box) {
+  const KnotVector& U = knots[l - 1][a];
+  const double tol = 1e-9 * (U.back() - U.front());
+  for (double* x : {&box.lower[a], &box.upper[a]}) {
+    if (*x < U.front() - tol || *x > U.back() + tol) {
+      return Str() << "bound " << *x << " lies outside the parameter domain [" << U.front() << ", "
+                   << U.back() << "]";
+    }
+    const std::vector<double> br = U.breaks();
+    const auto it = std::lower_bound(br.begin(), br.end(), *x);
+    const double above = it == br.end() ? br.back() : *it;
+    const double below = it == br.begin() ? br.front() : *(it - 1);
+    const double nearest = std::abs(above - *x) < std::abs(*x - below) ? above : below;
+    if (std::abs(nearest - *x) > tol) {
+      return Str() << "bound " << *x << " is not a knot line of level " << l - 1
+                   << " (boxes of level " << l << " must be unions of level-" << l - 1
+                   << " cells), nearest knot lines: " << below << " and " << above;
+    }
+    *x = nearest;
+  }
+  if (!(box.lower[a] < box.upper[a])) {
+    return Str() << "empty box: lower bound " << box.lower[a] << " is not below upper bound "
+                 << box.upper[a];
+  }
+  // At least one level-l B-spline with its support inside the box along a.
+  const KnotVector& V = knots[l][a];
+  const int p = V.degree();
+  for (int j = 0; j < V.numBasis(); ++j)
+    if (V[j] >= box.lower[a] && V[j + p + 1] <= box.upper[a]) return "";
+  return Str() << "the box of level " << l << " is too narrow: no degree-" << p
+               << " B-spline of level " << l << " has its support inside [" << box.lower[a] << ", "
+               << box.upper[a] << "] (more levels than the knot spans allow: widen the box)";
+}
+
+// Whether two closed boxes are apart: separated along at least one of the d directions
+// (touching counts as not apart).
+bool boxesApart(const ParamBox& x, const ParamBox& y, int d) {
+  for (int a = 0; a < d; ++a)
+    if (x.upper[a] < y.lower[a] || y.upper[a] < x.lower[a]) return true;
+  return false;
+}
+
+std::string describeBox(const ParamBox& b, int d) {
+  Str s;
+  for (int a = 0; a < d; ++a)
+    s << (a ? " x " : "") << "[" << b.lower[a] << ", " << b.upper[a] << "]";
+  return s;
+}
+
+// Box k of level l = b + 1 against the others: inside a box of level l - 1 (a level of one
+// box names the direction and the two intervals), apart from the level's other boxes.
+BoxProblem checkBoxPlacement(const HierarchyOptions& o, int b, int k, int d) {
+  const ParamBox& box = o.boxes[b][k];
+  if (b > 0 && o.boxes[b - 1].size() == 1) {
+    const ParamBox& outer = o.boxes[b - 1][0];
+    for (int a = 0; a < d; ++a) {
+      if (box.lower[a] < outer.lower[a] || box.upper[a] > outer.upper[a]) {
+        return {b, k, a,
+                Str() << "boxes are not nested: [" << box.lower[a] << ", " << box.upper[a]
+                      << "] of level " << b + 1 << " is not inside [" << outer.lower[a] << ", "
+                      << outer.upper[a] << "] of level " << b};
+      }
+    }
+  } else if (b > 0) {
+    bool nested = false;
+    for (const ParamBox& outer : o.boxes[b - 1]) nested = nested || boxInside(box, outer, d);
+    if (!nested) {
+      return {b, k, -1,
+              Str() << "boxes are not nested: " << describeBox(box, d) << " of level " << b + 1
+                    << " is not inside any box of level " << b};
+    }
+  }
+  for (int m = 0; m < k; ++m) {
+    if (!boxesApart(box, o.boxes[b][m], d)) {
+      return {b, k, -1,
+              Str() << "boxes " << m << " and " << k << " of level " << b + 1
+                    << " overlap or touch (" << describeBox(o.boxes[b][m], d) << " and "
+                    << describeBox(box, d) << "): the boxes of a level must lie apart"};
+    }
+  }
+  return {};
+}
+
+}  // namespace
+
 BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& o) {
   const int d = patch.paramDim();
   const std::string levelProblem = checkLevels(patch, o.levels);
-  if (!levelProblem.empty()) return {-1, -1, levelProblem};
+  if (!levelProblem.empty()) return {-1, 0, -1, levelProblem};
   if (static_cast<int>(o.boxes.size()) != o.levels - 1) {
-    return {-1, -1,
-            Str() << "expected one box per refined level (" << o.levels - 1 << " for " << o.levels
-                  << " levels), found " << o.boxes.size()};
+    return {-1, 0, -1,
+            Str() << "expected one entry of boxes per refined level (" << o.levels - 1 << " for "
+                  << o.levels << " levels), found " << o.boxes.size()};
   }
   const auto knots = levelKnotVectors(patch, o.levels);
   for (int b = 0; b < o.levels - 1; ++b) {
-    const int l = b + 1;
-    for (int a = 0; a < d; ++a) {
-      const KnotVector& U = knots[l - 1][a];
-      const double tol = 1e-9 * (U.back() - U.front());
-      double* bound[2] = {&o.boxes[b].lower[a], &o.boxes[b].upper[a]};
-      for (double* x : bound) {
-        if (*x < U.front() - tol || *x > U.back() + tol) {
-          return {b, a,
-                  Str() << "bound " << *x << " lies outside the parameter domain [" << U.front()
-                        << ", " << U.back() << "]"};
-        }
-        const std::vector<double> br = U.breaks();
-        const auto it = std::lower_bound(br.begin(), br.end(), *x);
-        const double above = it == br.end() ? br.back() : *it;
-        const double below = it == br.begin() ? br.front() : *(it - 1);
-        const double nearest = std::abs(above - *x) < std::abs(*x - below) ? above : below;
-        if (std::abs(nearest - *x) > tol) {
-          return {b, a,
-                  Str() << "bound " << *x << " is not a knot line of level " << l - 1
-                        << " (boxes of level " << l << " must be unions of level-" << l - 1
-                        << " cells), nearest knot lines: " << below << " and " << above};
-        }
-        *x = nearest;
+    if (o.boxes[b].empty()) return {b, 0, -1, "a refined level without a box"};
+    for (int k = 0; k < static_cast<int>(o.boxes[b].size()); ++k) {
+      for (int a = 0; a < d; ++a) {
+        const std::string why = checkBoxDirection(knots, b + 1, a, o.boxes[b][k]);
+        if (!why.empty()) return {b, k, a, why};
       }
-      if (!(o.boxes[b].lower[a] < o.boxes[b].upper[a])) {
-        return {b, a,
-                Str() << "empty box: lower bound " << o.boxes[b].lower[a]
-                      << " is not below upper bound " << o.boxes[b].upper[a]};
-      }
-      if (b > 0 && (o.boxes[b].lower[a] < o.boxes[b - 1].lower[a] ||
-                    o.boxes[b].upper[a] > o.boxes[b - 1].upper[a])) {
-        return {b, a,
-                Str() << "boxes are not nested: [" << o.boxes[b].lower[a] << ", "
-                      << o.boxes[b].upper[a] << "] of level " << l << " is not inside ["
-                      << o.boxes[b - 1].lower[a] << ", " << o.boxes[b - 1].upper[a] << "] of level "
-                      << l - 1};
-      }
-      // At least one level-l B-spline with its support inside the box along a.
-      const KnotVector& V = knots[l][a];
-      const int p = V.degree();
-      bool any = false;
-      for (int j = 0; j < V.numBasis() && !any; ++j) {
-        any = V[j] >= o.boxes[b].lower[a] && V[j + p + 1] <= o.boxes[b].upper[a];
-      }
-      if (!any) {
-        return {b, a,
-                Str() << "the box of level " << l << " is too narrow: no degree-" << p
-                      << " B-spline of level " << l << " has its support inside ["
-                      << o.boxes[b].lower[a] << ", " << o.boxes[b].upper[a]
-                      << "] (more levels than the knot spans allow: widen the box)"};
-      }
+      const BoxProblem placement = checkBoxPlacement(o, b, k, d);
+      if (!placement.reason.empty()) return placement;
     }
   }
   return {};
@@ -154,10 +207,12 @@ NurbsPatch globalReferencePatch(const NurbsPatch& patch, const HierarchyOptions&
     for (int l = 1; l < o.levels; ++l) {
       const KnotVector& U = knots[l - 1][a];
       for (int s : U.elementSpans()) {
-        if (U[s] >= o.boxes[l - 1].lower[a] && U[s + 1] <= o.boxes[l - 1].upper[a]) {
-          // The level-l knot line inside span s, computed as uniformInsertionKnots() does.
-          X.push_back(U[s] + (U[s + 1] - U[s]) / 2);
-        }
+        bool inside = false;
+        for (const ParamBox& box : o.boxes[l - 1])
+          inside = inside || (U[s] >= box.lower[a] && U[s + 1] <= box.upper[a]);
+        // The level-l knot line inside span s, computed as uniformInsertionKnots() does
+        // (once, however many of the level's boxes the span lies in along a).
+        if (inside) X.push_back(U[s] + (U[s + 1] - U[s]) / 2);
       }
     }
     if (!X.empty()) out = insertKnots(out, a, X);
@@ -192,8 +247,8 @@ HierarchicalSpace::HierarchicalSpace(const NurbsPatch& patch, HierarchyOptions o
     domain.lower[a] = base_.knots(a).front();
     domain.upper[a] = base_.knots(a).back();
   }
-  regions_.push_back(domain);
-  for (const auto& b : options_.boxes) regions_.push_back(b);
+  regions_.push_back({domain});
+  for (const LevelBoxes& b : options_.boxes) regions_.push_back(b);
   rows_.resize(nlvl_);
   for (int l = 1; l < nlvl_; ++l) {
     for (int a = 0; a < d_; ++a) {
@@ -225,13 +280,28 @@ HierarchicalSpace::HierarchicalSpace(const NurbsPatch& patch, HierarchyOptions o
 
 bool HierarchicalSpace::supportInRegion(int level, int region, const std::array<int, 3>& i) const {
   if (region >= nlvl_) return false;
-  for (int a = 0; a < d_; ++a) {
-    const KnotVector& U = knots_[level][a];
-    if (U[i[a]] < regions_[region].lower[a] || U[i[a] + p_[a] + 1] > regions_[region].upper[a]) {
-      return false;
+  for (const ParamBox& box : regions_[region]) {
+    bool inside = true;
+    for (int a = 0; a < d_ && inside; ++a) {
+      const KnotVector& U = knots_[level][a];
+      inside = U[i[a]] >= box.lower[a] && U[i[a] + p_[a] + 1] <= box.upper[a];
     }
+    if (inside) return true;
   }
-  return true;
+  return false;
+}
+
+bool HierarchicalSpace::cellInRegion(int level, int region, const std::array<int, 3>& spans) const {
+  if (region >= nlvl_) return false;
+  for (const ParamBox& box : regions_[region]) {
+    bool inside = true;
+    for (int a = 0; a < d_ && inside; ++a) {
+      const KnotVector& U = knots_[level][a];
+      inside = U[spans[a]] >= box.lower[a] && U[spans[a] + 1] <= box.upper[a];
+    }
+    if (inside) return true;
+  }
+  return false;
 }
 
 void HierarchicalSpace::buildFunctions() {
@@ -239,14 +309,17 @@ void HierarchicalSpace::buildFunctions() {
   for (int l = 0; l < nlvl_; ++l) {
     LevelIndex& idx = funcId_[l];
     levelFuncStart_.push_back(static_cast<int>(funcLevel_.size()));
-    // Index range of the level-l functions with support in Omega^l, per direction.
+    // Index range of the level-l functions with support in one of Omega^l's boxes, per
+    // direction (the range over all its boxes: the dense index covers the gaps too).
     for (int a = 0; a < d_; ++a) {
       const KnotVector& U = knots_[l][a];
       int lo = U.numBasis(), hi = -1;
       for (int j = 0; j < U.numBasis(); ++j) {
-        if (U[j] >= regions_[l].lower[a] && U[j + p_[a] + 1] <= regions_[l].upper[a]) {
-          lo = std::min(lo, j);
-          hi = std::max(hi, j);
+        for (const ParamBox& box : regions_[l]) {
+          if (U[j] >= box.lower[a] && U[j + p_[a] + 1] <= box.upper[a]) {
+            lo = std::min(lo, j);
+            hi = std::max(hi, j);
+          }
         }
       }
       idx.lo[a] = lo;
@@ -254,7 +327,7 @@ void HierarchicalSpace::buildFunctions() {
     }
     idx.id.assign(static_cast<std::size_t>(idx.n[0]) * idx.n[1] * idx.n[2], -1);
     forEachIndex(idx.lo, idx.n, [&](const std::array<int, 3>& i) {
-      if (supportInRegion(l, l + 1, i)) return;
+      if (!supportInRegion(l, l, i) || supportInRegion(l, l + 1, i)) return;
       int k = 0;
       for (int a = 2; a >= 0; --a) k = k * idx.n[a] + (i[a] - idx.lo[a]);
       idx.id[k] = static_cast<int>(funcLevel_.size());
@@ -315,16 +388,16 @@ void HierarchicalSpace::buildElements() {
 void HierarchicalSpace::buildLevelElements(int l) {
   const auto& spans = cellSpans_;
   LevelIndex& idx = elemId_[l];
-  auto inside = [&](int level, int region, int a, int s) {
-    return knots_[level][a][s] >= regions_[region].lower[a] &&
-           knots_[level][a][s + 1] <= regions_[region].upper[a];
-  };
+  // The range of cell ordinals over Omega^l's boxes, per direction.
   for (int a = 0; a < d_; ++a) {
     int lo = -1, hi = -2;
     for (int c = 0; c < static_cast<int>(spans[l][a].size()); ++c) {
-      if (inside(l, l, a, spans[l][a][c])) {
-        if (lo < 0) lo = c;
-        hi = c;
+      const int s = spans[l][a][c];
+      for (const ParamBox& box : regions_[l]) {
+        if (knots_[l][a][s] >= box.lower[a] && knots_[l][a][s + 1] <= box.upper[a]) {
+          if (lo < 0) lo = c;
+          hi = c;
+        }
       }
     }
     idx.lo[a] = lo;
@@ -334,12 +407,8 @@ void HierarchicalSpace::buildLevelElements(int l) {
   forEachIndex(idx.lo, idx.n, [&](const std::array<int, 3>& c) {
     Element el;
     el.level = l;
-    bool inFiner = l + 1 < nlvl_;
-    for (int a = 0; a < d_; ++a) {
-      el.spans[a] = spans[l][a][c[a]];
-      inFiner = inFiner && inside(l, l + 1, a, el.spans[a]);
-    }
-    if (inFiner) return;
+    for (int a = 0; a < d_; ++a) el.spans[a] = spans[l][a][c[a]];
+    if (!cellInRegion(l, l, el.spans) || cellInRegion(l, l + 1, el.spans)) return;
     int k = 0;
     for (int a = 2; a >= 0; --a) k = k * idx.n[a] + (c[a] - idx.lo[a]);
     idx.id[k] = static_cast<int>(elements_.size());

@@ -8,9 +8,14 @@
 //   B^l_i = sum_j T^{l+1}(j, i) B^{l+1}_j
 // comes from refinementMatrix() (Boehm knot insertion, Piegl & Tiller A5.4).
 //
-// Regions. Omega^0 is the parameter domain; Omega^l (l = 1..L-1) is one closed box per
-// level, given in knot coordinates, nested: Omega^{l+1} in Omega^l. Box semantics: every
-// bound of Omega^l must be a knot line (breakpoint) of level l-1, so Omega^l is a union of
+// Regions. Omega^0 is the parameter domain; Omega^l (l = 1..L-1) is a union of closed boxes
+// per level, given in knot coordinates, nested: every box of level l+1 lies in a box of
+// level l, so Omega^{l+1} in Omega^l. The boxes of one level are disjoint and do not touch
+// (separated along at least one direction), so that a connected set -- the support of a
+// B-spline, a cell -- lies in Omega^l exactly when it lies in one of its boxes: every test
+// below is "inside some box of the level". Several boxes per level refine around several
+// points (a body with contact regions at both ends). Box semantics: every bound of a box of
+// Omega^l must be a knot line (breakpoint) of level l-1, so Omega^l is a union of
 // level-(l-1) cells (required by the hierarchical construction). Bounds closer than 1e-9
 // (relative to the domain length) to a level-(l-1) knot line are snapped to it exactly;
 // any other bound is rejected by validateBoxes() with the nearest admissible values.
@@ -64,19 +69,27 @@ struct ParamBox {
   std::array<double, 3> upper{0, 0, 0};
 };
 
+// The boxes whose union is one level's region Omega^l (at least one).
+using LevelBoxes = std::vector<ParamBox>;
+
 struct HierarchyOptions {
-  int levels = 1;               // nlvl >= 1
-  std::vector<ParamBox> boxes;  // levels - 1 boxes: Omega^1 .. Omega^{nlvl-1}
-  bool truncated = true;        // THB (true) or the paper's HB (false)
+  int levels = 1;                 // nlvl >= 1
+  std::vector<LevelBoxes> boxes;  // levels - 1 entries: Omega^1 .. Omega^{nlvl-1}
+  bool truncated = true;          // THB (true) or the paper's HB (false)
 };
 
-// Problem with one box, for error messages: box index (0 = Omega^1), direction (-1 if the
-// problem concerns the whole box) and a one-line reason. Empty reason = no problem.
+// Problem with one box, for error messages: the level's index (box = 0: Omega^1), the box
+// within that level (member; 0 for a level of one box), direction (-1 if the problem
+// concerns the whole box) and a one-line reason. Empty reason = no problem.
 struct BoxProblem {
   int box = -1;
+  int member = 0;
   int dir = -1;
   std::string reason;
 };
+
+// Whether the box b lies in the box outer (closed boxes, the first d directions).
+bool boxInside(const ParamBox& b, const ParamBox& outer, int d);
 
 // The knot vectors of levels 0..levels-1 (level l+1 halves every span of level l).
 std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, int levels);
@@ -86,16 +99,17 @@ std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, i
 std::string checkLevels(const NurbsPatch& patch, int levels);
 
 // Checks (and snaps, in place) the boxes of `options` against the level grids of `patch`:
-// count (levels - 1), lo < hi inside the domain, alignment with level l-1 knot lines,
-// nesting, and that every box holds at least one B-spline of its own level in every
-// direction (otherwise the level adds nothing: more levels than the knot spans allow).
-// Returns the first problem found.
+// count (levels - 1, each level at least one box), lo < hi inside the domain, alignment
+// with level l-1 knot lines, nesting (each box inside a box of the level before), boxes of
+// one level apart (neither overlapping nor touching), and that every box holds at least
+// one B-spline of its own level in every direction (otherwise the level adds nothing: more
+// levels than the knot spans allow). Returns the first problem found.
 BoxProblem validateBoxes(const NurbsPatch& patch, HierarchyOptions& options);
 
 // The globally refined reference of a hierarchy (paper Sect. 5): the patch with every knot
-// line of every level l >= 1 inside its box inserted across the whole domain, so that its
-// knot vectors equal the finest level's inside the finest box. `options` must have passed
-// validateBoxes().
+// line of every level l >= 1 inside one of its boxes inserted across the whole domain, so
+// that its knot vectors equal the finest level's inside the finest boxes. `options` must
+// have passed validateBoxes().
 NurbsPatch globalReferencePatch(const NurbsPatch& patch, const HierarchyOptions& options);
 
 class HierarchicalSpace : public SplineSpace {
@@ -120,8 +134,8 @@ class HierarchicalSpace : public SplineSpace {
   const HierarchyOptions& options() const { return options_; }
   const NurbsPatch& basePatch() const { return base_; }
   const std::vector<KnotVector>& levelKnots(int level) const { return knots_[level]; }
-  // Omega^l (the whole domain for l = 0) after snapping.
-  ParamBox region(int level) const { return regions_[level]; }
+  // The boxes of Omega^l (the whole domain for l = 0) after snapping.
+  const LevelBoxes& region(int level) const { return regions_[level]; }
 
   // Function k: level and tensor index in that level's tensor space.
   int functionLevel(int k) const { return funcLevel_[k]; }
@@ -151,7 +165,7 @@ class HierarchicalSpace : public SplineSpace {
     Eigen::MatrixXd weightedT;   // (diag(w) C_e)^T, K x n_e (identity: the K weights)
     bool identity = false;       // C_e is the identity (functions = the level's local ones)
   };
-  struct LevelIndex {  // dense id arrays over the index ranges of the region's box
+  struct LevelIndex {  // dense id arrays over the index ranges of the region's boxes
     std::array<int, 3> lo{0, 0, 0};
     std::array<int, 3> n{1, 1, 1};
     std::vector<int> id;  // -1: none
@@ -159,6 +173,8 @@ class HierarchicalSpace : public SplineSpace {
   };
 
   bool supportInRegion(int level, int region, const std::array<int, 3>& i) const;
+  // Whether the level's cell of knot spans `spans` lies in Omega^region.
+  bool cellInRegion(int level, int region, const std::array<int, 3>& spans) const;
   void buildFunctions();
   void buildElements();
   // The elements of level l: the cells of Omega^l outside Omega^{l+1}, with their ids.
@@ -179,7 +195,7 @@ class HierarchicalSpace : public SplineSpace {
   std::array<int, 3> p_{0, 0, 0};
   int nloc_ = 1;                                // (p+1)^d
   std::vector<std::vector<KnotVector>> knots_;  // [level][dir]
-  std::vector<ParamBox> regions_;               // Omega^0 .. Omega^{nlvl-1}
+  std::vector<LevelBoxes> regions_;             // Omega^0 .. Omega^{nlvl-1}
   // [level][dir]: rows of T^{level} (level-1 -> level): for fine j, pairs (coarse i, value).
   std::vector<std::array<std::vector<std::vector<std::pair<int, double>>>, 3>> rows_;
   std::vector<int> funcLevel_;

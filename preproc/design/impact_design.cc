@@ -116,7 +116,7 @@ void designHierarchy(const std::vector<ChartDirection>& chart, double a, double 
       box.lower[k] = outer[k][0];
       box.upper[k] = outer[k][1];
     }
-    d->hierarchy.boxes.push_back(box);
+    d->hierarchy.boxes.push_back({box});
   }
   d->finest_arc = 0.0;
   for (const ChartDirection& c : chart) {
@@ -150,8 +150,8 @@ void designRegion(const std::vector<ChartDirection>& chart, double a, ImpactDesi
     if (c.depth) continue;
     const std::array<double, 2> finest =
         d->hierarchy.boxes.empty() ? std::array<double, 2>{0.0, 1.0}
-                                   : std::array<double, 2>{d->hierarchy.boxes.back().lower[k],
-                                                           d->hierarchy.boxes.back().upper[k]};
+                                   : std::array<double, 2>{d->hierarchy.boxes.back()[0].lower[k],
+                                                           d->hierarchy.boxes.back()[0].upper[k]};
     d->region.push_back(interval(c, reach, 0.0, std::ldexp(c.span0, -halvings), finest));
   }
 }

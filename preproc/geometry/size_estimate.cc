@@ -53,14 +53,18 @@ SizeEstimate estimateGlobalReferenceSize(const NurbsPatch& refined,
     const KnotVector& U = refined.knots(a);
     degree[a] = U.degree();
     n[a] = U.numBasis();
-    // Level l halves the level l - 1 spans inside its box: as many new knot lines as the
-    // box holds level-0 spans times 2^(l - 1), inserted across the whole patch.
+    // Level l halves the level l - 1 spans inside its boxes: as many new knot lines as the
+    // boxes hold level-0 spans along a (each span once) times 2^(l - 1), inserted across
+    // the whole patch.
     const std::vector<double> breaks = U.breaks();
     for (int l = 1; l < hierarchy.levels; ++l) {
-      const ParamBox& box = hierarchy.boxes[l - 1];
       double inside = 0.0;
-      for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
-        if (breaks[k] >= box.lower[a] && breaks[k + 1] <= box.upper[a]) inside += 1.0;
+      for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+        bool in = false;
+        for (const ParamBox& box : hierarchy.boxes[l - 1])
+          in = in || (breaks[k] >= box.lower[a] && breaks[k + 1] <= box.upper[a]);
+        if (in) inside += 1.0;
+      }
       n[a] += inside * std::pow(2.0, l - 1);
     }
   }

@@ -59,7 +59,25 @@ NurbsPatch checkedRefinedPatch(const BodyConfig& c, const NurbsPatch& exact, dou
   }
 }
 
-// The levels and the boxes of `hierarchy` (one per refined level) against the level grids
+// Box `member` of level b + 1 (snapped: exact bounds) off the patch's degenerate faces.
+void checkBoxOffDegenerateFaces(const YamlDocument& doc, const YAML::Node& level, int b, int member,
+                                const ParamBox& box, const NurbsPatch& patch) {
+  for (int a = 0; a < patch.paramDim(); ++a) {
+    for (const bool up : {false, true}) {
+      if (up ? box.upper[a] < patch.knots(a).back() : box.lower[a] > patch.knots(a).front())
+        continue;
+      const std::string why = degenerateFace(patch, a, up);
+      if (!why.empty()) {
+        throw inputError(doc, hierarchyBoxNode(level, member)[a],
+                         Str() << hierarchyBoxKey(level, b, member) << "[" << a << "]",
+                         Str() << "box of level " << b + 1 << " touches the degenerate face "
+                               << faceName(a, up) << " (" << why << "); " << kDegenerateRule);
+      }
+    }
+  }
+}
+
+// The levels and the boxes of `hierarchy` (one entry per refined level) against the level grids
 // of the refined patch (snapped in place), and off its degenerate faces.
 void checkHierarchy(BodyConfig& c, const NurbsPatch& patch) {
   const YamlDocument& doc = c.source;
@@ -70,36 +88,23 @@ void checkHierarchy(BodyConfig& c, const NurbsPatch& patch) {
   const YAML::Node boxes = h["boxes"];
   const int nb = static_cast<int>(c.hierarchy.boxes.size());
   if (nb != c.hierarchy.levels - 1) {
-    throw inputError(doc, boxes ? boxes : h["levels"],
-                     boxes ? "hierarchy.boxes" : "hierarchy.levels",
-                     Str() << "expected one box per refined level (" << c.hierarchy.levels - 1
-                           << " for levels = " << c.hierarchy.levels << "), found " << nb);
+    throw inputError(
+        doc, boxes ? boxes : h["levels"], boxes ? "hierarchy.boxes" : "hierarchy.levels",
+        Str() << "expected one box (or list of boxes) per refined level (" << c.hierarchy.levels - 1
+              << " for levels = " << c.hierarchy.levels << "), found " << nb);
   }
   const BoxProblem problem = validateBoxes(patch, c.hierarchy);
   if (!problem.reason.empty()) {
     if (problem.box < 0) throw inputError(doc, h["levels"], "hierarchy.levels", problem.reason);
-    const YAML::Node node = problem.dir < 0 ? boxes[problem.box] : boxes[problem.box][problem.dir];
-    std::string key = Str() << "hierarchy.boxes[" << problem.box << "]";
+    const YAML::Node box = hierarchyBoxNode(boxes[problem.box], problem.member);
+    std::string key = hierarchyBoxKey(boxes[problem.box], problem.box, problem.member);
     if (problem.dir >= 0) key = Str() << key << "[" << problem.dir << "]";
-    throw inputError(doc, node, key,
+    throw inputError(doc, problem.dir < 0 ? box : box[problem.dir], key,
                      Str() << "box of level " << problem.box + 1 << ": " << problem.reason);
   }
-  for (int b = 0; b < static_cast<int>(c.hierarchy.boxes.size()); ++b) {
-    const ParamBox& box = c.hierarchy.boxes[b];
-    for (int a = 0; a < patch.paramDim(); ++a) {
-      for (const bool up : {false, true}) {
-        // Bounds are snapped onto knot lines by validateBoxes: exact comparison.
-        if (up ? box.upper[a] < patch.knots(a).back() : box.lower[a] > patch.knots(a).front())
-          continue;
-        const std::string why = degenerateFace(patch, a, up);
-        if (!why.empty()) {
-          throw inputError(doc, boxes[b][a], Str() << "hierarchy.boxes[" << b << "][" << a << "]",
-                           Str() << "box of level " << b + 1 << " touches the degenerate face "
-                                 << faceName(a, up) << " (" << why << "); " << kDegenerateRule);
-        }
-      }
-    }
-  }
+  for (int b = 0; b < static_cast<int>(c.hierarchy.boxes.size()); ++b)
+    for (int k = 0; k < static_cast<int>(c.hierarchy.boxes[b].size()); ++k)
+      checkBoxOffDegenerateFaces(doc, boxes[b], b, k, c.hierarchy.boxes[b][k], patch);
 }
 
 // One contact region: its face off degenerate faces, its box inside the knot range and off

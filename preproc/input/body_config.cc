@@ -184,8 +184,26 @@ void parseReduction(const YamlDocument& doc, const YAML::Node& node, bool hasCon
   }
 }
 
-// Reads hierarchy.*: the levels and the boxes, one interval per direction (their number and
-// the level grids of the refined patch are checked by checkBodyConfig).
+// One box of hierarchy.boxes (at `key`): one interval per parametric direction.
+ParamBox readHierarchyBox(const YamlDocument& doc, const YAML::Node& node, const std::string& key,
+                          int d) {
+  if (static_cast<int>(node.size()) != d) {
+    throw inputError(doc, node, key,
+                     Str() << "expected one [lo, hi] interval per parametric direction (" << d
+                           << "), found " << node.size());
+  }
+  ParamBox box;
+  for (int a = 0; a < d; ++a) {
+    const std::string k = Str() << key << "[" << a << "]";
+    box.lower[a] = getDouble(doc, node[a][0], k);
+    box.upper[a] = getDouble(doc, node[a][1], k);
+  }
+  return box;
+}
+
+// Reads hierarchy.*: the levels and each level's boxes (one, or a list), one interval per
+// direction (their number and the level grids of the refined patch are checked by
+// checkBodyConfig).
 void readHierarchy(const YamlDocument& doc, const YAML::Node& h, int d, BodyConfig& c) {
   if (!h) return;
   c.hierarchy.levels = getInt(doc, h["levels"], "hierarchy.levels");
@@ -194,19 +212,12 @@ void readHierarchy(const YamlDocument& doc, const YAML::Node& h, int d, BodyConf
   const YAML::Node boxes = h["boxes"];
   const int nb = boxes ? static_cast<int>(boxes.size()) : 0;
   for (int b = 0; b < nb; ++b) {
-    const std::string key = Str() << "hierarchy.boxes[" << b << "]";
-    if (static_cast<int>(boxes[b].size()) != d) {
-      throw inputError(doc, boxes[b], key,
-                       Str() << "expected one [lo, hi] interval per parametric direction (" << d
-                             << "), found " << boxes[b].size());
-    }
-    ParamBox box;
-    for (int a = 0; a < d; ++a) {
-      const std::string k = Str() << key << "[" << a << "]";
-      box.lower[a] = getDouble(doc, boxes[b][a][0], k);
-      box.upper[a] = getDouble(doc, boxes[b][a][1], k);
-    }
-    c.hierarchy.boxes.push_back(box);
+    const int members = listOfBoxes(boxes[b]) ? static_cast<int>(boxes[b].size()) : 1;
+    LevelBoxes level;
+    for (int k = 0; k < members; ++k)
+      level.push_back(
+          readHierarchyBox(doc, hierarchyBoxNode(boxes[b], k), hierarchyBoxKey(boxes[b], b, k), d));
+    c.hierarchy.boxes.push_back(level);
   }
 }
 
@@ -602,6 +613,24 @@ NurbsPatch refinedPatch(const BodyConfig& config) {
 
 HierarchicalSpace bodySpace(const BodyConfig& config) {
   return ffriga::bodySpace(refinedPatch(config), config.hierarchy, config.global_reference);
+}
+
+// Whether a level's entry of hierarchy.boxes is a list of boxes (its first item's first item
+// is an interval) rather than one box (a list of intervals).
+bool listOfBoxes(const YAML::Node& level) {
+  return level.IsSequence() && level.size() > 0 && level[0].IsSequence() && level[0].size() > 0 &&
+         level[0][0].IsSequence();
+}
+
+YAML::Node hierarchyBoxNode(const YAML::Node& level, int member) {
+  return listOfBoxes(level) ? level[member] : level;
+}
+
+std::string hierarchyBoxKey(const YAML::Node& level, int b, int member) {
+  Str key;
+  key << "hierarchy.boxes[" << b << "]";
+  if (listOfBoxes(level)) key << "[" << member << "]";
+  return key;
 }
 
 }  // namespace ffriga

@@ -134,6 +134,13 @@ BodyConfig readBodyConfig(YamlDocument doc);
 // the read phase.
 YAML::Node contactNode(const YamlDocument& doc, const ContactConfig& contact);
 
+// A level's entry `level` of hierarchy.boxes is one box or a list of boxes: whether it is a
+// list, the YAML node of its box `member` and that box's key ("hierarchy.boxes[b]" or
+// "hierarchy.boxes[b][member]"), for errors found after the read phase.
+bool listOfBoxes(const YAML::Node& level);
+YAML::Node hierarchyBoxNode(const YAML::Node& level, int member);
+std::string hierarchyBoxKey(const YAML::Node& level, int b, int member);
+
 // The body's refined patch and spline space (preproc/geometry/body_geometry.h).
 NurbsPatch refinedPatch(const BodyConfig& config);
 HierarchicalSpace bodySpace(const BodyConfig& config);

@@ -23,7 +23,7 @@ HierarchicalSpace loadSpace(const std::string& stem) {
 // Surface region = the face part of the finest box.
 ParamBox faceRegion(const HierarchicalSpace& H, int dir) {
   ParamBox r;
-  const ParamBox box = H.region(H.numLevels() - 1);
+  const ParamBox box = H.region(H.numLevels() - 1)[0];
   int i = 0;
   for (int a = 0; a < H.paramDim(); ++a) {
     if (a == dir) continue;

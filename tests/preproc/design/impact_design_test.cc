@@ -104,7 +104,7 @@ TEST_CASE("designed half-disk: region, finest spans and boxes on the exact geome
     // 0.5 a deep plus kLayerCells cells of that level.
     double xiHi = 1.0, etaLo = 0.0;
     for (int l = 1; l <= halvings; ++l) {
-      const ParamBox& b = d.hierarchy.boxes[l - 1];
+      const ParamBox& b = d.hierarchy.boxes[l - 1][0];
       const double gx = std::ldexp(1.0 / 16.0, -(l - 1)), ge = std::ldexp(1.0 / 25.0, -(l - 1));
       CHECK(b.lower[0] == 0.0);
       CHECK(b.upper[1] == 1.0);
@@ -154,7 +154,8 @@ TEST_CASE("designed sphere: region and boxes on the exact solid sphere", "[desig
   // Boxes nested, inside the first quarter of zeta (a C0 line of the circle at 1/4) and off
   // the degenerate faces xi = 0, 1 and the seam zeta = 0.
   const ParamBox* outer = nullptr;
-  for (const ParamBox& b : d.hierarchy.boxes) {
+  for (const LevelBoxes& level : d.hierarchy.boxes) {
+    const ParamBox& b = level[0];
     CHECK(b.lower[0] > 0.0);
     CHECK(b.upper[0] < 1.0);
     CHECK(b.lower[2] > 0.0);

@@ -95,7 +95,7 @@ void checkPair(const std::string& stem, int n, double maxRatio, double maxFuncti
   const HierarchicalSpace H = bodySpace(h);
   const HierarchicalSpace G = bodySpace(g);
   REQUIRE(G.numLevels() == 1);
-  const ParamBox fine = H.region(n - 1);
+  const ParamBox fine = H.region(n - 1)[0];
   for (int a = 0; a < H.paramDim(); ++a) {
     // Knot values are computed by the same midpoint formula on both sides: exact equality.
     CHECK(knotsIn(G.levelKnots(0)[a], fine.lower[a], fine.upper[a]) ==
