@@ -1,7 +1,9 @@
 """Acceptance check of the collinear Newton's cradle (issue 27): builds sphere2d_poles (an
-axisymmetric sphere with a contact region at each pole), runs configs/scenes/cradle3_2d.yaml
-and cradle5_2d.yaml (3 and 5 spheres in a row, the first at 0.1 m/s; the inner ones struck
-at one region and striking with the other) and checks them, read from the result files,
+axisymmetric sphere with a contact region at each pole, globally graded) and
+sphere2d_h3_poles (the same regions on sphere2d_h3's hierarchical mesh, two boxes per level:
+one chain at each pole), runs configs/scenes/cradle3_2d.yaml and cradle5_2d.yaml with each
+(3 and 5 spheres in a row, the first at 0.1 m/s; the inner ones struck at one region and
+striking with the other) and checks them, read from the result files,
 against the same chain of rigid spheres with Hertz's law between neighbours, integrated
 here independently of ffrsim (RK4, 1e-8 s steps: the force peaks converge to 1e-9):
   m x_i'' = F_{i-1} - F_i,  F_i = K max(0, x_i - x_{i+1})^(3/2),
@@ -31,9 +33,11 @@ from result_checks import Checks  # noqa: E402
 
 igaprep, ffrsim, source, out = sys.argv[1:5]
 os.makedirs(out, exist_ok=True)
-sid = f"{out}/sphere2d_poles.sid.h5"
-subprocess.run([igaprep, "-q", f"{source}/configs/bodies/sphere2d_poles.yaml", "-o", sid],
-               check=True)
+BODIES = ("sphere2d_poles", "sphere2d_h3_poles")
+for body in BODIES:
+    subprocess.run([igaprep, "-q", f"{source}/configs/bodies/{body}.yaml", "-o",
+                    f"{out}/{body}.sid.h5"], check=True)
+sid = f"{out}/{BODIES[0]}.sid.h5"
 check = Checks()
 
 
@@ -70,11 +74,12 @@ with h5py.File(sid, "r") as s:
 K = 4.0 / 3.0 * E / (2 * (1 - nu * nu)) * np.sqrt(R / 2)
 v0 = 0.1
 
-for n in (3, 5):
-    scene = f"cradle{n}_2d"
-    result = f"{out}/{scene}.h5"
-    subprocess.run([ffrsim, "-q", f"{source}/configs/scenes/{scene}.yaml", "--sid-path", out,
-                    "-o", result], check=True)
+for body, n in [(b, n) for b in BODIES for n in (3, 5)]:
+    scene = f"cradle{n}_2d" + ("" if body == BODIES[0] else f" ({body})")
+    result = f"{out}/cradle{n}_2d_{body}.h5"
+    sids = [f"bodies.{i}.sid={body}.sid.h5" for i in range(n)]
+    subprocess.run([ffrsim, "-q", f"{source}/configs/scenes/cradle{n}_2d.yaml", "--sid-path", out,
+                    "-o", result] + [a for s in sids for a in ("--set", s)], check=True)
     with h5py.File(result, "r") as f:
         check.status_completed(f)
         T = float(f["time"][-1])
