@@ -2,9 +2,9 @@
 """The hanging 3D Newton's cradle against the same cradle of rigid spheres (issue 27).
 
 Builds configs/bodies/sphere3d_poles.yaml (a 3D sphere with contact regions at two antipodal
-points, two chains of hierarchy boxes) with igaprep, runs configs/scenes/cradle3_3d.yaml
-(three flexible spheres hanging on strings, the first swinging in at 0.1 m/s, no damping)
-and its reference cradle3_3d_rigid.yaml (the same strings, joints and gravity with rigid
+points, two chains of hierarchy boxes) with igaprep, runs configs/scenes/cradleN_3d.yaml
+(N = 3 or 5 flexible spheres hanging on strings, the first swinging in at 0.1 m/s, no
+damping) and its reference cradleN_3d_rigid.yaml (the same strings, joints and gravity with rigid
 spheres and Hertz's law between neighbours' centres, runtime/forces/hertz_point_contact),
 and prints from the two result files, against the issue's bounds for the hanging cradle:
 
@@ -16,8 +16,8 @@ and prints from the two result files, against the issue's bounds for the hanging
     (kinetic + gravity + elastic + contact; nothing dissipates);
   * steps and wall time of both runs, igaprep's wall time, ndof and nq.
 
-usage: benchmarks/cradle3_3d.py [--build build] [--sid FILE] [--out DIR] [--png FILE]
-                                [--text FILE] [--json FILE]
+usage: benchmarks/cradle_3d.py [--spheres 3|5] [--build build] [--sid FILE] [--out DIR]
+                               [--png FILE] [--text FILE] [--json FILE]
 --sid reuses a built sphere3d_poles SID instead of running igaprep.
 """
 import argparse
@@ -35,8 +35,6 @@ sys.path.insert(0, os.path.join(ROOT, "tests", "e2e"))
 from result_checks import inertial_velocity  # noqa: E402
 
 V0 = 0.1  # m/s, the first sphere's speed in both scenes
-PAIRS = ("s1-s2", "s2-s3")
-SPHERES = ("s1", "s2", "s3")
 ENERGY = ("kinetic", "gravity", "elastic", "contact", "force_elements")
 
 
@@ -46,13 +44,15 @@ def run(cmd):
     return time.monotonic() - start
 
 
-def figures(result, forces):
+def figures(result, forces, n):
     """Final velocities along x, force peaks and histories, joint violation, energy drift."""
+    spheres = [f"s{i + 1}" for i in range(n)]
+    pairs = [f"s{i + 1}-s{i + 2}" for i in range(n - 1)]
     with h5py.File(result, "r") as f:
         t = f["time"][:]
         out = dict(steps=int(f.attrs["solver_steps"]), t=t,
-                   v={s: inertial_velocity(f, s)[:, 0] for s in SPHERES})
-        out["F"] = {p: np.abs(f[forces.format(p)][:]) for p in PAIRS}
+                   v={s: inertial_velocity(f, s)[:, 0] for s in spheres})
+        out["F"] = {p: np.abs(f[forces.format(p)][:]) for p in pairs}
         out["violation"] = max(float(np.abs(f[f"joints/{j}/violation"][:]).max())
                                for j in f["joints"])
         energy = sum(f[f"energy/{k}"][:] for k in ENERGY if f"energy/{k}" in f)
@@ -63,6 +63,7 @@ def figures(result, forces):
 
 def main():
     ap = argparse.ArgumentParser()
+    ap.add_argument("--spheres", type=int, choices=(3, 5), default=3)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--sid")
     ap.add_argument("--out", default="/tmp/cradle3_3d")
@@ -79,27 +80,29 @@ def main():
                      "-o", sid])
     with h5py.File(sid, "r") as s:
         ndof, nq = int(s.attrs["ndof"]), int(s.attrs["nq"])
-    flex, rigid = os.path.join(a.out, "cradle3_3d.h5"), os.path.join(a.out, "cradle3_3d_rigid.h5")
-    t_flex = run([f"{bin_}/ffrsim", "-q", f"{ROOT}/configs/scenes/cradle3_3d.yaml",
-                  "--sid-path", os.path.dirname(os.path.abspath(sid)),
-                  "--set", f"bodies.0.sid={os.path.basename(sid)}",
-                  "--set", f"bodies.1.sid={os.path.basename(sid)}",
-                  "--set", f"bodies.2.sid={os.path.basename(sid)}", "-o", flex])
-    t_rigid = run([f"{bin_}/ffrsim", "-q", f"{ROOT}/configs/scenes/cradle3_3d_rigid.yaml",
+    n = a.spheres
+    spheres = [f"s{i + 1}" for i in range(n)]
+    pairs = [f"s{i + 1}-s{i + 2}" for i in range(n - 1)]
+    scene = f"cradle{n}_3d"
+    flex, rigid = os.path.join(a.out, f"{scene}.h5"), os.path.join(a.out, f"{scene}_rigid.h5")
+    sids = [a for i in range(n) for a in ("--set", f"bodies.{i}.sid={os.path.basename(sid)}")]
+    t_flex = run([f"{bin_}/ffrsim", "-q", f"{ROOT}/configs/scenes/{scene}.yaml",
+                  "--sid-path", os.path.dirname(os.path.abspath(sid)), "-o", flex] + sids)
+    t_rigid = run([f"{bin_}/ffrsim", "-q", f"{ROOT}/configs/scenes/{scene}_rigid.yaml",
                    "-o", rigid])
-    F = figures(flex, "contacts/{}/normal_force")
-    R = figures(rigid, "force_elements/{}/tension")
-    lines = [f"hanging 3D Newton's cradle, 3 steel spheres r = 1 cm on 5 cm strings, "
+    F = figures(flex, "contacts/{}/normal_force", n)
+    R = figures(rigid, "force_elements/{}/tension", n)
+    lines = [f"hanging 3D Newton's cradle, {n} steel spheres r = 1 cm on 5 cm strings, "
              f"{V0:g} m/s in; sphere3d_poles: ndof {ndof}, nq {nq}"
              + (f", igaprep {t_pre:.1f} s" if t_pre else "")]
     rows = dict(ndof=ndof, nq=nq, igaprep_s=t_pre, spheres={}, pairs={})
-    for s in SPHERES:
+    for s in spheres:
         d = (F["v"][s][-1] - R["v"][s][-1]) / V0
         rows["spheres"][s] = dict(flexible=float(F["v"][s][-1]), rigid=float(R["v"][s][-1]),
                                   difference_of_v0=float(d))
         lines.append(f"  {s} leaves at {F['v'][s][-1]:+.6f} m/s, rigid {R['v'][s][-1]:+.6f} m/s: "
                      f"{d:+.3%} of v0 (bound 3 %)")
-    for p in PAIRS:
+    for p in pairs:
         d = F["F"][p].max() / R["F"][p].max() - 1
         rows["pairs"][p] = dict(flexible_N=float(F["F"][p].max()), rigid_N=float(R["F"][p].max()),
                                 difference=float(d))
@@ -120,20 +123,20 @@ def main():
         with open(a.json, "w") as f:
             json.dump(rows, f, indent=1)
     if a.png:
-        plot(F, R, a.png)
+        plot(F, R, spheres, pairs, a.png)
 
 
-def plot(F, R, png):
+def plot(F, R, spheres, pairs, png):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
-    for p, c in zip(PAIRS, ("C0", "C1")):
+    for p, c in zip(pairs, ("C0", "C1", "C2", "C3")):
         ax1.plot(1e6 * F["t"], F["F"][p], c, label=f"{p} flexible")
         ax1.plot(1e6 * R["t"], R["F"][p], c + "--", label=f"{p} rigid + Hertz")
     ax1.set_ylabel("contact force, N")
     ax1.legend(fontsize=8)
-    for s, c in zip(SPHERES, ("C0", "C1", "C2")):
+    for s, c in zip(spheres, ("C0", "C1", "C2", "C3", "C4")):
         ax2.plot(1e6 * F["t"], F["v"][s], c, label=f"{s} flexible")
         ax2.plot(1e6 * R["t"], R["v"][s], c + "--", label=f"{s} rigid")
     ax2.set_xlabel("time, us")
