@@ -278,30 +278,26 @@ HierarchicalSpace::HierarchicalSpace(const NurbsPatch& patch, HierarchyOptions o
   }
 }
 
-bool HierarchicalSpace::supportInRegion(int level, int region, const std::array<int, 3>& i) const {
+bool HierarchicalSpace::knotRangeInRegion(int level, int region, const std::array<int, 3>& first,
+                                          const std::array<int, 3>& spans) const {
   if (region >= nlvl_) return false;
   for (const ParamBox& box : regions_[region]) {
     bool inside = true;
     for (int a = 0; a < d_ && inside; ++a) {
       const KnotVector& U = knots_[level][a];
-      inside = U[i[a]] >= box.lower[a] && U[i[a] + p_[a] + 1] <= box.upper[a];
+      inside = U[first[a]] >= box.lower[a] && U[first[a] + spans[a]] <= box.upper[a];
     }
     if (inside) return true;
   }
   return false;
 }
 
+bool HierarchicalSpace::supportInRegion(int level, int region, const std::array<int, 3>& i) const {
+  return knotRangeInRegion(level, region, i, {p_[0] + 1, p_[1] + 1, p_[2] + 1});
+}
+
 bool HierarchicalSpace::cellInRegion(int level, int region, const std::array<int, 3>& spans) const {
-  if (region >= nlvl_) return false;
-  for (const ParamBox& box : regions_[region]) {
-    bool inside = true;
-    for (int a = 0; a < d_ && inside; ++a) {
-      const KnotVector& U = knots_[level][a];
-      inside = U[spans[a]] >= box.lower[a] && U[spans[a] + 1] <= box.upper[a];
-    }
-    if (inside) return true;
-  }
-  return false;
+  return knotRangeInRegion(level, region, spans, {1, 1, 1});
 }
 
 void HierarchicalSpace::buildFunctions() {

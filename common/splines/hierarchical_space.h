@@ -172,6 +172,11 @@ class HierarchicalSpace : public SplineSpace {
     int at(const std::array<int, 3>& i) const;
   };
 
+  // Whether the level's knot range [U_a[first_a], U_a[first_a + spans_a]] (every direction
+  // a < d) lies in one box of Omega^region (none for region >= nlvl).
+  bool knotRangeInRegion(int level, int region, const std::array<int, 3>& first,
+                         const std::array<int, 3>& spans) const;
+  // Whether the support of the level's B-spline with tensor index i lies in Omega^region.
   bool supportInRegion(int level, int region, const std::array<int, 3>& i) const;
   // Whether the level's cell of knot spans `spans` lies in Omega^region.
   bool cellInRegion(int level, int region, const std::array<int, 3>& spans) const;
