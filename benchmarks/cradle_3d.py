@@ -44,10 +44,8 @@ def run(cmd):
     return time.monotonic() - start
 
 
-def figures(result, forces, n):
+def figures(result, forces, spheres, pairs):
     """Final velocities along x, force peaks and histories, joint violation, energy drift."""
-    spheres = [f"s{i + 1}" for i in range(n)]
-    pairs = [f"s{i + 1}-s{i + 2}" for i in range(n - 1)]
     with h5py.File(result, "r") as f:
         t = f["time"][:]
         out = dict(steps=int(f.attrs["solver_steps"]), t=t,
@@ -90,8 +88,8 @@ def main():
                   "--sid-path", os.path.dirname(os.path.abspath(sid)), "-o", flex] + sids)
     t_rigid = run([f"{bin_}/ffrsim", "-q", f"{ROOT}/configs/scenes/{scene}_rigid.yaml",
                    "-o", rigid])
-    F = figures(flex, "contacts/{}/normal_force", n)
-    R = figures(rigid, "force_elements/{}/tension", n)
+    F = figures(flex, "contacts/{}/normal_force", spheres, pairs)
+    R = figures(rigid, "force_elements/{}/tension", spheres, pairs)
     lines = [f"hanging 3D Newton's cradle, {n} steel spheres r = 1 cm on 5 cm strings, "
              f"{V0:g} m/s in; sphere3d_poles: ndof {ndof}, nq {nq}"
              + (f", igaprep {t_pre:.1f} s" if t_pre else "")]

@@ -79,6 +79,12 @@ std::string checkLevels(const NurbsPatch& patch, int levels) {
   return "";
 }
 
+bool intervalInBoxes(const LevelBoxes& boxes, int a, double lo, double hi) {
+  for (const ParamBox& box : boxes)
+    if (lo >= box.lower[a] && hi <= box.upper[a]) return true;
+  return false;
+}
+
 bool boxInside(const ParamBox& b, const ParamBox& outer, int d) {
   for (int a = 0; a < d; ++a)
     if (b.lower[a] < outer.lower[a] || b.upper[a] > outer.upper[a]) return false;
@@ -207,12 +213,10 @@ NurbsPatch globalReferencePatch(const NurbsPatch& patch, const HierarchyOptions&
     for (int l = 1; l < o.levels; ++l) {
       const KnotVector& U = knots[l - 1][a];
       for (int s : U.elementSpans()) {
-        bool inside = false;
-        for (const ParamBox& box : o.boxes[l - 1])
-          inside = inside || (U[s] >= box.lower[a] && U[s + 1] <= box.upper[a]);
         // The level-l knot line inside span s, computed as uniformInsertionKnots() does
         // (once, however many of the level's boxes the span lies in along a).
-        if (inside) X.push_back(U[s] + (U[s + 1] - U[s]) / 2);
+        if (intervalInBoxes(o.boxes[l - 1], a, U[s], U[s + 1]))
+          X.push_back(U[s] + (U[s + 1] - U[s]) / 2);
       }
     }
     if (!X.empty()) out = insertKnots(out, a, X);
@@ -311,11 +315,9 @@ void HierarchicalSpace::buildFunctions() {
       const KnotVector& U = knots_[l][a];
       int lo = U.numBasis(), hi = -1;
       for (int j = 0; j < U.numBasis(); ++j) {
-        for (const ParamBox& box : regions_[l]) {
-          if (U[j] >= box.lower[a] && U[j + p_[a] + 1] <= box.upper[a]) {
-            lo = std::min(lo, j);
-            hi = std::max(hi, j);
-          }
+        if (intervalInBoxes(regions_[l], a, U[j], U[j + p_[a] + 1])) {
+          lo = std::min(lo, j);
+          hi = std::max(hi, j);
         }
       }
       idx.lo[a] = lo;
@@ -389,11 +391,9 @@ void HierarchicalSpace::buildLevelElements(int l) {
     int lo = -1, hi = -2;
     for (int c = 0; c < static_cast<int>(spans[l][a].size()); ++c) {
       const int s = spans[l][a][c];
-      for (const ParamBox& box : regions_[l]) {
-        if (knots_[l][a][s] >= box.lower[a] && knots_[l][a][s + 1] <= box.upper[a]) {
-          if (lo < 0) lo = c;
-          hi = c;
-        }
+      if (intervalInBoxes(regions_[l], a, knots_[l][a][s], knots_[l][a][s + 1])) {
+        if (lo < 0) lo = c;
+        hi = c;
       }
     }
     idx.lo[a] = lo;

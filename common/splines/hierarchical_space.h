@@ -91,6 +91,10 @@ struct BoxProblem {
 // Whether the box b lies in the box outer (closed boxes, the first d directions).
 bool boxInside(const ParamBox& b, const ParamBox& outer, int d);
 
+// Whether the interval [lo, hi] along direction a lies inside one of the boxes' intervals
+// along a (a level's knot span, or a B-spline's support, against its region's boxes).
+bool intervalInBoxes(const LevelBoxes& boxes, int a, double lo, double hi);
+
 // The knot vectors of levels 0..levels-1 (level l+1 halves every span of level l).
 std::vector<std::vector<KnotVector>> levelKnotVectors(const NurbsPatch& patch, int levels);
 

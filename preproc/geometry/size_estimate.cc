@@ -59,12 +59,8 @@ SizeEstimate estimateGlobalReferenceSize(const NurbsPatch& refined,
     const std::vector<double> breaks = U.breaks();
     for (int l = 1; l < hierarchy.levels; ++l) {
       double inside = 0.0;
-      for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-        bool in = false;
-        for (const ParamBox& box : hierarchy.boxes[l - 1])
-          in = in || (breaks[k] >= box.lower[a] && breaks[k + 1] <= box.upper[a]);
-        if (in) inside += 1.0;
-      }
+      for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+        if (intervalInBoxes(hierarchy.boxes[l - 1], a, breaks[k], breaks[k + 1])) inside += 1.0;
       n[a] += inside * std::pow(2.0, l - 1);
     }
   }
